@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// Everything a case file (.prm) says, validated and in SI units. Only coupling/app knows the .prm
+/// format; the drivers take this plain struct. Angles are stored in degrees as users write them.
+
+#include <string>
+
+namespace coupling
+{
+  /// Rock material of one run, after the group lookup in cases/data and any explicit overrides.
+  struct RockParameters
+  {
+    std::string group = "M1";          ///< material group M1..M10 (Table 3 / Table 4 of the paper)
+    std::string model = "mohr-coulomb"; ///< elastic, mohr-coulomb, mohr-coulomb-cutoff, hoek-brown
+    double density = 2900.0;           ///< [kg/m^3]
+    double youngs_modulus = 97.07e9;   ///< [Pa]
+    double poissons_ratio = 0.28;      ///< [-]
+    double cohesion = 32.99e6;         ///< [Pa]
+    double friction_angle = 63.68;     ///< [deg]
+    double dilation_angle = 0.0;       ///< [deg] (non-associated flow when below friction_angle)
+    double tensile_strength = 0.0;     ///< [Pa] tension cut-off; 0 = none (mohr-coulomb-cutoff)
+    double hoek_brown_mi = 0.0;        ///< [-] Hoek-Brown m_i (hoek-brown)
+    double ucs = 0.0;                  ///< [Pa] uniaxial strength sigma_ci (hoek-brown, reporting)
+    double softening_strain = 2e-3;    ///< [-] plastic strain over which strength falls to residual
+    double residual_fraction = 0.1;    ///< [-] residual strength / peak strength
+  };
+
+  /// SPH numerics (names after LS-DYNA's *CONTROL_SPH / *SECTION_SPH).
+  struct SphParameters
+  {
+    double spacing = 2.5e-3;      ///< particle spacing dx [m]
+    int form = 8;                 ///< LS-DYNA FORM: 0, 1, 7 or 8
+    double cslh = 1.2;            ///< h = CSLH * dx [-]
+    double tssfac = 0.9;          ///< time-step scale factor [-]
+    std::string kernel = "cubic"; ///< cubic or wendland
+    bool evolve_smoothing_length = false; ///< dh/dt = (h/dim) div v
+    double av_alpha = 1.0;        ///< Monaghan artificial viscosity, linear term [-]
+    double av_beta = 1.0;         ///< Monaghan artificial viscosity, quadratic term [-]
+    double hourglass = 0.1;       ///< total-Lagrangian hourglass coefficient [-]
+    int n_threads = 0;            ///< 0 = all cores
+  };
+
+  /// Platens: rigid (prescribed motion) or elastic steel (deal.II FEM).
+  struct PlatenParameters
+  {
+    std::string model = "rigid";  ///< rigid or elastic
+    double friction = 0.0;        ///< Coulomb friction coefficient rock-platen [-]
+    double youngs_modulus = 200e9; ///< steel [Pa]
+    double poissons_ratio = 0.3;  ///< steel [-]
+    double density = 7850.0;      ///< steel [kg/m^3]
+    double thickness = 0.02;      ///< platen thickness along the loading axis [m]
+    double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
+    double element_size = 0.0;    ///< FEM element size [m]; 0 = from the particle spacing
+    double contact_stiffness_scale = 0.5; ///< penalty stiffness / its stability bound [-]
+  };
+
+  /// Loading path. A strain rate of 0 derives the rate from the specimen's wave transit time.
+  struct LoadingParameters
+  {
+    double strain_rate = 0.0;      ///< nominal axial strain rate [1/s]; 0 = derived
+    double transit_times = 40.0;   ///< when derived: load ramp to peak over this many wave transits
+    double end_strain = 0.01;      ///< run stops at this nominal strain [-] (UCS/CTCS; BTS: d/D)
+    double post_peak_drop = 0.2;   ///< run stops when the load fell this fraction below its peak
+    double max_kinetic_ratio = 0.01; ///< quasi-static limit on kinetic/internal energy [-]
+    double max_force_imbalance = 0.05; ///< quasi-static limit on |F_top-F_bottom|/F [-]
+  };
+
+  /// What the run writes besides summary and history.
+  struct OutputParameters
+  {
+    int n_history_rows = 400;  ///< about this many history rows over the load path
+    int n_snapshots = 20;      ///< particle / mesh snapshots over the load path
+    bool progress = true;      ///< progress display on stderr
+  };
+
+  /// One case: the test, the specimen, and the parts.
+  struct CaseParameters
+  {
+    std::string name = "ucs";        ///< case name (default output folder results/<name>)
+    std::string test = "UCS";        ///< UCS, BTS or CTCS
+    double diameter = 0.05;          ///< specimen diameter [m]
+    double length = 0.1;             ///< UCS/CTCS: length; BTS: disc thickness [m]
+    double confining_pressure = 0.0; ///< CTCS lateral pressure [Pa], compression positive
+    RockParameters rock;
+    SphParameters sph;
+    PlatenParameters platens;
+    LoadingParameters loading;
+    OutputParameters output;
+  };
+} // namespace coupling

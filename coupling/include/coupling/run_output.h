@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// What a running case hands to whoever records it (the app writes files; tests keep it in
+/// memory). Plain data only: no deal.II, no file formats here.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace coupling
+{
+  /// One row of history.csv. Stress and strain are compression-positive, as the paper reports them.
+  struct HistoryRow
+  {
+    double time = 0;             ///< [s]
+    double displacement = 0;     ///< platen approach (top minus bottom) [m], positive closing
+    double force = 0;            ///< load cell: reaction on the loaded platen [N], compression +
+    double force_bottom = 0;     ///< reaction on the other platen [N], compression +
+    double stress = 0;           ///< UCS/CTCS: force / true area; BTS: 2P/(pi D t) [Pa]
+    double strain = 0;           ///< displacement / specimen length (BTS: / diameter) [-]
+    double radial_strain = 0;    ///< UCS/CTCS lateral strain at mid-height, extension + [-]
+    double kinetic_energy = 0;   ///< rock + platens [J]
+    double internal_energy = 0;  ///< elastic strain energy, rock + platens [J]
+    double dissipated_energy = 0; ///< plastic + viscous + friction dissipation [J]
+    double external_work = 0;    ///< work of the loading and confinement [J]
+    double n_failed = 0;         ///< number of failed / fully damaged particles
+  };
+
+  /// Particle fields at one instant, flat arrays: vectors as x0,y0,z0,x1,...; stress as the six
+  /// components xx,yy,zz,yz,xz,xy per particle, tension positive [Pa].
+  struct ParticleSnapshot
+  {
+    std::size_t n = 0;
+    std::vector<double> position;        ///< [m]
+    std::vector<double> velocity;        ///< [m/s]
+    std::vector<double> displacement;    ///< [m]
+    std::vector<double> stress;          ///< [Pa]
+    std::vector<double> plastic_strain;  ///< equivalent plastic strain [-]
+    std::vector<double> damage;          ///< [0,1]
+  };
+
+  /// A platen mesh at one instant: hexahedra, vertices in deal.II's lexicographic order mapped to
+  /// VTK order by the writer. Vectors flat as above.
+  struct MeshSnapshot
+  {
+    std::string name;                     ///< e.g. "platen_top"
+    std::vector<double> position;         ///< deformed vertex positions [m]
+    std::vector<double> displacement;     ///< [m]
+    std::vector<unsigned int> hexahedra;  ///< 8 vertex indices per cell, VTK hexahedron order
+    std::vector<double> von_mises;        ///< per cell [Pa]
+  };
+
+  /// Results of one run, as summary.json holds them (design.md).
+  struct Summary
+  {
+    std::string test;
+    std::size_t n_particles = 0;
+    std::size_t n_steps = 0;
+    double wall_seconds = 0;
+    double peak_stress = 0;           ///< [Pa]
+    double peak_force = 0;            ///< [N]
+    double strain_at_peak = 0;        ///< [-]
+    double youngs_modulus = 0;        ///< secant 40-60 % of peak [Pa]
+    double poissons_ratio = -1;       ///< < 0 when not measured
+    double max_displacement = 0;      ///< [m]
+    double max_kinetic_to_internal_energy = 0;
+    double max_force_imbalance = 0;   ///< max |F_top - F_bottom| / peak force past 10 % load
+    double energy_balance_error = 0;  ///< |E_kin + E_int + E_diss - W_ext| / W_ext at the end
+    bool quasi_static = false;
+    double true_area = 0;             ///< specimen cross-section pi D^2/4 (UCS) or D t (BTS) [m^2]
+    double lattice_area = 0;          ///< cross-section of the particle lattice [m^2]
+    double strain_rate = 0;           ///< nominal strain rate used [1/s]
+    double time_step = 0;             ///< SPH time step [s]
+    std::string stop_reason;          ///< "post-peak drop", "end strain", ...
+  };
+
+  /// Receives what a run produces, in order: any number of progress / history / snapshot calls.
+  class RunObserver
+  {
+  public:
+    virtual ~RunObserver() = default;
+    /// Called every few steps. fraction: share of the planned load path done, in [0, 1].
+    virtual void progress(std::size_t step, double time, double fraction) {}
+    virtual void history(const HistoryRow &row) {}
+    virtual void snapshot(double time, const ParticleSnapshot &particles,
+                          const std::vector<MeshSnapshot> &meshes) {}
+  };
+} // namespace coupling
