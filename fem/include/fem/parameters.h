@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// Plain parameter structs of the fem library: the platen model and material, and its geometry.
+/// No deal.II types here: coupling code includes this header and must compile fast.
+
+namespace fem
+{
+  /// Rigid: prescribed motion of every node, no internal force, reaction = inertia - contact
+  /// forces. Elastic: linear elastic Q1 hexahedra, explicit central differences, lumped mass.
+  enum class PlatenModel
+  {
+    rigid,
+    elastic
+  };
+
+  /// Shape of the platen body.
+  enum class PlatenShape
+  {
+    cylinder, ///< disc of `diameter` and `thickness`, axis along z (UCS, CTCS)
+    box       ///< flat block `size_x` x `size_y` x `thickness` (BTS)
+  };
+
+  /// Which side of the contact plane z = contact_z the platen body lies on.
+  enum class PlatenSide
+  {
+    above, ///< top platen: body in [contact_z, contact_z + thickness], contact normal -z
+    below  ///< bottom platen: body in [contact_z - thickness, contact_z], contact normal +z
+  };
+
+  /// Lateral (x, y) condition on the loaded face. z is always prescribed there.
+  enum class LoadedFaceLateral
+  {
+    fixed, ///< x, y velocities of the loaded face are zero (a platen clamped in the frame)
+    free   ///< only z is prescribed: x, y are free (frictionless machine contact)
+  };
+
+  /// Boundary ids of the platen mesh.
+  namespace boundary_id
+  {
+    constexpr unsigned int free_faces = 0; ///< lateral hull / sides: traction free
+    constexpr unsigned int loaded     = 1; ///< face opposite the contact face: prescribed motion
+    constexpr unsigned int contact    = 2; ///< face in the plane z = contact_z, touches the rock
+  } // namespace boundary_id
+
+  /// Geometry of one platen. Lengths [m]. The body is centred on (center_x, center_y).
+  struct PlatenGeometry
+  {
+    PlatenShape shape  = PlatenShape::cylinder;
+    double diameter    = 0.07;  ///< cylinder diameter [m]
+    double size_x      = 0.07;  ///< box extent along x [m]
+    double size_y      = 0.04;  ///< box extent along y [m]
+    double thickness   = 0.02;  ///< extent along z [m]
+    double contact_z   = 0.0;   ///< z of the contact face [m]
+    double center_x    = 0.0;   ///< [m]
+    double center_y    = 0.0;   ///< [m]
+    PlatenSide side    = PlatenSide::above;
+  };
+
+  /// Model, material and numerics of one platen. Defaults: elastic steel.
+  struct Parameters
+  {
+    PlatenModel model          = PlatenModel::elastic;
+    double youngs_modulus      = 200e9;  ///< E [Pa]
+    double poissons_ratio      = 0.3;    ///< nu [-]
+    double density             = 7850.0; ///< rho [kg/m^3]
+    /// Stiffness-proportional (Rayleigh beta) damping: f_damp = beta K v. beta [s]; 0 = none.
+    double stiffness_damping   = 0.0;
+    /// Target element edge length [m]; the mesh uses the nearest size its generator can make
+    /// (not larger than about 1.5 times this).
+    double element_size        = 0.005;
+    /// stable_time_step() = safety * (critical step from the power-iteration lambda_max) [-].
+    double time_step_safety    = 0.9;
+    LoadedFaceLateral loaded_face_lateral = LoadedFaceLateral::fixed;
+    /// Power iteration for lambda_max(M^-1 K): iteration cap and relative residual to stop at.
+    unsigned int power_iteration_max   = 2000;
+    double power_iteration_tolerance   = 1e-4;
+  };
+} // namespace fem
