@@ -1,0 +1,103 @@
+#pragma once
+/// @file
+/// Penalty contact with Coulomb friction between rock particles (slaves) and a platen's contact
+/// surface (master): quadrilateral faces over the platen's contact-face nodes, which are the
+/// rock's background particles. Plain data in, plain data out; no sph or fem types here.
+///
+/// Each contact force is computed once, applied to the particle, and spread over the face's four
+/// nodes with the bilinear shape-function weights at the contact point (weights sum to one), so
+/// the forces on rock and platen cancel to round-off.
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace coupling
+{
+  /// The master side at one instant: the platen's contact-face nodes as background particles.
+  /// Flat arrays x0,y0,z0,x1,...; faces as 4 node indices whose normal (p1-p0)x(p3-p0) points out
+  /// of the platen, towards the rock.
+  struct ContactSurface
+  {
+    std::vector<double> position;             ///< [m]
+    std::vector<double> velocity;             ///< [m/s]
+    std::vector<double> mass;                 ///< lumped nodal mass [kg]; 0 for a rigid platen
+    std::vector<std::array<unsigned int, 4>> faces;
+    std::size_t n_nodes() const { return mass.size(); }
+  };
+
+  /// The slave side: rock particles (flat arrays as above).
+  struct ContactParticles
+  {
+    const double *position = nullptr; ///< [m]
+    const double *velocity = nullptr; ///< [m/s]
+    const double *mass = nullptr;     ///< [kg]
+    std::size_t n = 0;
+  };
+
+  struct ContactParameters
+  {
+    double stiffness = 0.0;        ///< normal (and tangential) penalty stiffness per particle [N/m]
+    double friction_static = 0.0;  ///< Coulomb static coefficient [-]
+    double friction_dynamic = 0.0; ///< Coulomb dynamic coefficient [-] (<= static)
+    double radius = 0.0;           ///< particle contact radius: half the particle spacing [m]
+  };
+
+  /// Largest stable penalty stiffness for a particle of mass m_s against a node of mass m_m
+  /// (m_m = 0: rigid) under central differences with step dt: k < 4 m_eff / dt^2, where
+  /// m_eff = m_s m_m / (m_s + m_m). The particle's own SPH stiffness uses part of that budget, so
+  /// callers take a fraction of it.
+  double stable_contact_stiffness(double slave_mass, double master_mass, double dt);
+
+  /// Per-particle friction history (the elastic tangential spring of regularised stick).
+  struct FrictionState
+  {
+    std::array<double, 3> tangential_force{{0, 0, 0}}; ///< [N]
+    bool sliding = false;
+  };
+
+  /// Penalty contact between one master surface and the rock particles.
+  class PenaltyContact
+  {
+  public:
+    PenaltyContact(const ContactParameters &parameters, std::size_t n_particles);
+
+    /// Computes the contact forces for the current positions and velocities and ADDS them to
+    /// `force_on_particles` (3 n) and `force_on_nodes` (3 n_nodes) [N]. dt [s] advances the
+    /// friction springs. Returns the number of particles in contact.
+    std::size_t apply(const ContactParticles &particles, const ContactSurface &surface, double dt,
+                      std::vector<double> &force_on_particles, std::vector<double> &force_on_nodes);
+
+    /// Sum of the normal forces of the last apply() [N] (>= 0).
+    double normal_force() const { return normal_force_; }
+    /// Penalty energy stored in the last apply() [J].
+    double penalty_energy() const { return penalty_energy_; }
+    /// Friction work dissipated so far [J] (>= 0).
+    double friction_dissipation() const { return friction_dissipation_; }
+    /// Particles that slid in the last apply().
+    std::size_t n_sliding() const { return n_sliding_; }
+
+  private:
+    struct Hit
+    {
+      int face = -1;
+      double gap = 0;                 ///< signed distance beyond the contact radius [m]
+      std::array<double, 4> weight{}; ///< shape-function weights of the face nodes
+      std::array<double, 3> normal{}; ///< unit, out of the platen
+    };
+    Hit find_face(const double *x, const ContactSurface &surface) const;
+    void build_face_grid(const ContactSurface &surface);
+
+    ContactParameters prm_;
+    std::vector<FrictionState> friction_;
+    std::vector<Hit> hits_;
+    std::vector<std::array<double, 3>> particle_force_;
+    // uniform grid of face bounding boxes
+    std::array<double, 3> grid_origin_{};
+    double grid_cell_ = 1.0;
+    std::array<int, 3> grid_n_{};
+    std::vector<int> cell_start_, cell_faces_;
+    double normal_force_ = 0, penalty_energy_ = 0, friction_dissipation_ = 0;
+    std::size_t n_sliding_ = 0;
+  };
+} // namespace coupling

@@ -1,0 +1,279 @@
+#include <coupling/contact.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace coupling
+{
+  namespace
+  {
+    using V3 = std::array<double, 3>;
+
+    inline V3 sub(const V3 &a, const V3 &b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+    inline double dot(const V3 &a, const V3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+    inline V3 cross(const V3 &a, const V3 &b)
+    {
+      return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    }
+    inline V3 node(const ContactSurface &s, unsigned int k)
+    {
+      return {s.position[3 * k], s.position[3 * k + 1], s.position[3 * k + 2]};
+    }
+
+    /// Bilinear shape functions of a quad with nodes counter-clockwise at (-1,-1),(1,-1),(1,1),(-1,1).
+    inline std::array<double, 4> shape(double xi, double eta)
+    {
+      return {0.25 * (1 - xi) * (1 - eta), 0.25 * (1 + xi) * (1 - eta),
+              0.25 * (1 + xi) * (1 + eta), 0.25 * (1 - xi) * (1 + eta)};
+    }
+
+    /// How far outside the reference square a projection may fall and still count: particles on a
+    /// shared edge must find one of the two faces despite round-off.
+    constexpr double edge_tolerance = 1e-9;
+  } // namespace
+
+  double stable_contact_stiffness(double slave_mass, double master_mass, double dt)
+  {
+    const double m_eff =
+      master_mass > 0 ? slave_mass * master_mass / (slave_mass + master_mass) : slave_mass;
+    return 4.0 * m_eff / (dt * dt);
+  }
+
+  PenaltyContact::PenaltyContact(const ContactParameters &parameters, std::size_t n_particles)
+    : prm_(parameters)
+    , friction_(n_particles)
+    , hits_(n_particles)
+    , particle_force_(n_particles)
+  {}
+
+  void PenaltyContact::build_face_grid(const ContactSurface &s)
+  {
+    const double inflate = 2.0 * prm_.radius;
+    V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    double largest = 0;
+    std::vector<std::array<double, 6>> box(s.faces.size());
+    for (std::size_t f = 0; f < s.faces.size(); ++f)
+    {
+      std::array<double, 6> b{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+      for (unsigned int k : s.faces[f])
+        for (int d = 0; d < 3; ++d)
+        {
+          b[d]     = std::min(b[d], s.position[3 * k + d] - inflate);
+          b[3 + d] = std::max(b[3 + d], s.position[3 * k + d] + inflate);
+        }
+      for (int d = 0; d < 3; ++d)
+      {
+        lo[d]   = std::min(lo[d], b[d]);
+        hi[d]   = std::max(hi[d], b[3 + d]);
+        largest = std::max(largest, b[3 + d] - b[d]);
+      }
+      box[f] = b;
+    }
+    grid_origin_ = lo;
+    grid_cell_   = std::max(largest, 1e-12);
+    for (int d = 0; d < 3; ++d)
+      grid_n_[d] = std::max(1, static_cast<int>(std::ceil((hi[d] - lo[d]) / grid_cell_)));
+    const std::size_t n_cells = std::size_t(grid_n_[0]) * grid_n_[1] * grid_n_[2];
+    cell_start_.assign(n_cells + 1, 0);
+    auto cell_range = [&](const std::array<double, 6> &b, std::array<int, 6> &r) {
+      for (int d = 0; d < 3; ++d)
+      {
+        r[d]     = std::clamp(int((b[d] - lo[d]) / grid_cell_), 0, grid_n_[d] - 1);
+        r[3 + d] = std::clamp(int((b[3 + d] - lo[d]) / grid_cell_), 0, grid_n_[d] - 1);
+      }
+    };
+    auto for_cells = [&](const std::array<int, 6> &r, auto &&fn) {
+      for (int k = r[2]; k <= r[5]; ++k)
+        for (int j = r[1]; j <= r[4]; ++j)
+          for (int i = r[0]; i <= r[3]; ++i)
+            fn((std::size_t(k) * grid_n_[1] + j) * grid_n_[0] + i);
+    };
+    std::array<int, 6> r;
+    for (const auto &b : box)
+    {
+      cell_range(b, r);
+      for_cells(r, [&](std::size_t c) { ++cell_start_[c + 1]; });
+    }
+    for (std::size_t c = 0; c < n_cells; ++c)
+      cell_start_[c + 1] += cell_start_[c];
+    cell_faces_.assign(cell_start_.back(), -1);
+    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t f = 0; f < box.size(); ++f)
+    {
+      cell_range(box[f], r);
+      for_cells(r, [&](std::size_t c) { cell_faces_[fill[c]++] = int(f); });
+    }
+  }
+
+  PenaltyContact::Hit PenaltyContact::find_face(const double *x, const ContactSurface &s) const
+  {
+    Hit best;
+    int idx[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      idx[d] = static_cast<int>(std::floor((x[d] - grid_origin_[d]) / grid_cell_));
+      if (idx[d] < 0 || idx[d] >= grid_n_[d])
+        return best;
+    }
+    const std::size_t c = (std::size_t(idx[2]) * grid_n_[1] + idx[1]) * grid_n_[0] + idx[0];
+    const V3 p{x[0], x[1], x[2]};
+    for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q)
+    {
+      const int f = cell_faces_[q];
+      const auto &fn = s.faces[f];
+      const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
+      // Newton iterations for the closest point x(xi, eta) of the bilinear face.
+      double xi = 0, eta = 0;
+      V3 xs{}, dxi{}, deta{};
+      for (int it = 0; it < 8; ++it)
+      {
+        const auto N = shape(xi, eta);
+        for (int d = 0; d < 3; ++d)
+        {
+          xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
+          dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
+          deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
+        }
+        const V3 r = sub(p, xs);
+        const double a = dot(dxi, dxi), b = dot(dxi, deta), e = dot(deta, deta);
+        const double g1 = dot(dxi, r), g2 = dot(deta, r);
+        const double det = a * e - b * b;
+        if (!(det > 0))
+          break;
+        const double dx1 = (e * g1 - b * g2) / det, dx2 = (a * g2 - b * g1) / det;
+        xi += dx1;
+        eta += dx2;
+        if (std::abs(dx1) + std::abs(dx2) < 1e-13)
+          break;
+      }
+      if (std::abs(xi) > 1 + edge_tolerance || std::abs(eta) > 1 + edge_tolerance)
+        continue;
+      xi  = std::clamp(xi, -1.0, 1.0);
+      eta = std::clamp(eta, -1.0, 1.0);
+      const auto N = shape(xi, eta);
+      for (int d = 0; d < 3; ++d)
+      {
+        xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
+        dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
+        deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
+      }
+      V3 n = cross(dxi, deta);
+      const double nn = std::sqrt(dot(n, n));
+      if (!(nn > 0))
+        continue;
+      for (double &v : n)
+        v /= nn;
+      const double distance = dot(sub(p, xs), n);
+      // a particle more than one diameter behind the face is not in contact with it (it belongs to
+      // another face or has tunnelled, which the time-step bound prevents)
+      if (distance < -2.0 * prm_.radius || distance > prm_.radius)
+        continue;
+      const double gap = distance - prm_.radius;
+      if (best.face < 0 || gap < best.gap)
+      {
+        best.face   = f;
+        best.gap    = gap;
+        best.weight = N;
+        best.normal = n;
+      }
+    }
+    return best;
+  }
+
+  std::size_t PenaltyContact::apply(const ContactParticles &pt, const ContactSurface &s, double dt,
+                                    std::vector<double> &force_on_particles,
+                                    std::vector<double> &force_on_nodes)
+  {
+    build_face_grid(s);
+    const double k  = prm_.stiffness;
+    const double mu_s = prm_.friction_static, mu_d = prm_.friction_dynamic;
+    const long n = static_cast<long>(pt.n);
+    double fn_sum = 0, energy = 0, dissipated = 0;
+    std::size_t n_contact = 0, n_slide = 0;
+
+    // Gather: each particle finds its face and its force independently (no shared writes).
+#pragma omp parallel for schedule(static) reduction(+ : fn_sum, energy, dissipated, n_contact, n_slide)
+    for (long i = 0; i < n; ++i)
+    {
+      Hit hit = find_face(pt.position + 3 * i, s);
+      FrictionState &fr = friction_[i];
+      std::array<double, 3> f{0, 0, 0};
+      if (hit.face < 0 || hit.gap >= 0)
+      {
+        fr = FrictionState{};
+        hit.face = -1;
+      }
+      else
+      {
+        ++n_contact;
+        const double fn = -k * hit.gap;
+        fn_sum += fn;
+        energy += 0.5 * k * hit.gap * hit.gap;
+        const auto &nrm = hit.normal;
+        // velocity of the contact point on the face
+        V3 vm{0, 0, 0};
+        for (int a = 0; a < 4; ++a)
+          for (int d = 0; d < 3; ++d)
+            vm[d] += hit.weight[a] * s.velocity[3 * s.faces[hit.face][a] + d];
+        V3 vr{pt.velocity[3 * i] - vm[0], pt.velocity[3 * i + 1] - vm[1],
+              pt.velocity[3 * i + 2] - vm[2]};
+        const double vn = dot(vr, nrm);
+        V3 vt{vr[0] - vn * nrm[0], vr[1] - vn * nrm[1], vr[2] - vn * nrm[2]};
+        V3 ft{0, 0, 0};
+        if (mu_s > 0 || mu_d > 0)
+        {
+          // elastic stick spring (regularised stick), rotated into the current tangent plane
+          V3 trial = fr.tangential_force;
+          const double tn = dot(trial, nrm);
+          for (int d = 0; d < 3; ++d)
+            trial[d] += -tn * nrm[d] - k * vt[d] * dt;
+          const double t_norm = std::sqrt(dot(trial, trial));
+          const double limit  = (fr.sliding ? mu_d : mu_s) * fn;
+          if (t_norm > limit && t_norm > 0)
+          {
+            for (int d = 0; d < 3; ++d)
+              ft[d] = trial[d] * (mu_d * fn / t_norm);
+            fr.sliding = true;
+            ++n_slide;
+            // friction dissipation: -f_t . v_t dt (f_t opposes the slip)
+            dissipated += std::max(0.0, -dot(ft, vt) * dt);
+          }
+          else
+          {
+            ft         = trial;
+            fr.sliding = false;
+          }
+          fr.tangential_force = ft;
+          energy += 0.5 * dot(ft, ft) / k; // the stick spring's elastic energy
+        }
+        for (int d = 0; d < 3; ++d)
+          f[d] = fn * nrm[d] + ft[d];
+      }
+      hits_[i]           = hit;
+      particle_force_[i] = f;
+    }
+
+    // Scatter in particle order: deterministic, and each force applied once to each side.
+    for (long i = 0; i < n; ++i)
+    {
+      const Hit &hit = hits_[i];
+      if (hit.face < 0)
+        continue;
+      const auto &f = particle_force_[i];
+      for (int d = 0; d < 3; ++d)
+        force_on_particles[3 * i + d] += f[d];
+      for (int a = 0; a < 4; ++a)
+      {
+        const unsigned int node_id = s.faces[hit.face][a];
+        for (int d = 0; d < 3; ++d)
+          force_on_nodes[3 * node_id + d] -= hit.weight[a] * f[d];
+      }
+    }
+    normal_force_ = fn_sum;
+    penalty_energy_ = energy;
+    friction_dissipation_ += dissipated;
+    n_sliding_ = n_slide;
+    return n_contact;
+  }
+} // namespace coupling

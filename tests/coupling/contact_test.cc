@@ -1,0 +1,176 @@
+// Unit tests of the penalty contact between rock particles and a platen surface.
+#include <coupling/contact.h>
+#include <coupling/curve_analysis.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace coupling;
+
+namespace
+{
+  /// A flat square surface z = z0 of n x n quads over [0, L]^2, normal +z (towards the rock).
+  ContactSurface flat_surface(int n, double L, double z0, double node_mass)
+  {
+    ContactSurface s;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+      {
+        s.position.insert(s.position.end(), {L * i / n, L * j / n, z0});
+        s.velocity.insert(s.velocity.end(), {0, 0, 0});
+        s.mass.push_back(node_mass);
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const unsigned a = j * (n + 1) + i;
+        s.faces.push_back({a, a + 1, a + n + 2, a + n + 1}); // counter-clockwise seen from +z
+      }
+    return s;
+  }
+
+  double sum_norm(const std::vector<double> &f)
+  {
+    double s = 0;
+    for (std::size_t i = 0; i < f.size(); i += 3)
+      s += std::sqrt(f[i] * f[i] + f[i + 1] * f[i + 1] + f[i + 2] * f[i + 2]);
+    return s;
+  }
+} // namespace
+
+TEST(ContactExchange, ForcesCancelToRoundOff)
+{
+  const ContactSurface s = flat_surface(4, 0.04, 0.0, 0.1);
+  // a 7 x 7 patch of particles, some penetrating, some sliding sideways
+  std::vector<double> x, v, m;
+  for (int j = 0; j < 7; ++j)
+    for (int i = 0; i < 7; ++i)
+    {
+      x.insert(x.end(), {0.003 + 0.0055 * i, 0.002 + 0.0057 * j, 0.0008 + 1e-5 * ((i * 7 + j) % 5)});
+      v.insert(v.end(), {0.1 * i, -0.05 * j, -0.01});
+      m.push_back(2e-3);
+    }
+  ContactParticles p{x.data(), v.data(), m.data(), m.size()};
+  ContactParameters prm;
+  prm.stiffness       = 1e7;
+  prm.radius          = 1e-3;
+  prm.friction_static = prm.friction_dynamic = 0.3;
+  PenaltyContact contact(prm, p.n);
+  std::vector<double> fp(x.size(), 0.0), fn(s.position.size(), 0.0);
+  const std::size_t n_in = contact.apply(p, s, 1e-7, fp, fn);
+  ASSERT_GT(n_in, 10u) << "the fixture must be in contact, or the test proves nothing";
+  const double scale = sum_norm(fp);
+  ASSERT_GT(scale, 0.0);
+  // each contact force is applied once to the particle and once, split by weights summing to one,
+  // to the nodes: only round-off (a few ulps per term) may remain
+  for (int d = 0; d < 3; ++d)
+  {
+    double total = 0;
+    for (std::size_t i = d; i < fp.size(); i += 3)
+      total += fp[i];
+    for (std::size_t i = d; i < fn.size(); i += 3)
+      total += fn[i];
+    EXPECT_LT(std::abs(total), 1e-12 * scale) << "component " << d;
+  }
+}
+
+TEST(ContactExchange, FacesNotNodesCatchParticles)
+{
+  // one coarse face 10 mm wide; a particle over its middle, far from every node, must be held
+  const ContactSurface s = flat_surface(1, 0.01, 0.0, 1.0);
+  std::vector<double> x{0.005, 0.005, 0.0004}, v{0, 0, 0}, m{1e-3};
+  ContactParameters prm;
+  prm.stiffness = 1e6;
+  prm.radius    = 5e-4;
+  PenaltyContact contact(prm, 1);
+  std::vector<double> fp(3, 0.0), fn(12, 0.0);
+  ASSERT_EQ(contact.apply({x.data(), v.data(), m.data(), 1}, s, 1e-7, fp, fn), 1u);
+  // penetration 0.1 mm at k = 1e6 N/m: 100 N straight up (exact for a flat face, up to round-off)
+  EXPECT_NEAR(fp[2], 100.0, 1e-9);
+  EXPECT_NEAR(fp[0], 0.0, 1e-12);
+  // the reaction is shared equally by the four corner nodes of the face
+  for (int a = 0; a < 4; ++a)
+    EXPECT_NEAR(fn[3 * a + 2], -25.0, 1e-9);
+}
+
+TEST(ContactFriction, SlidesWhenTangentialForceReachesMuN)
+{
+  // A particle pressed with N onto a rigid face; a tangential pull T grows slowly. It must stay
+  // stuck until T = mu_s N and slide from there on.
+  const double mu = 0.3, N = 50.0, mass = 1e-3, k = 1e6, r = 5e-4;
+  const ContactSurface s = flat_surface(2, 0.02, 0.0, 0.0);
+  ContactParameters prm;
+  prm.stiffness       = k;
+  prm.radius          = r;
+  prm.friction_static = prm.friction_dynamic = mu;
+  PenaltyContact contact(prm, 1);
+  std::vector<double> x{0.01, 0.01, r - N / k}, v{0, 0, 0}, m{mass};
+  // dt well inside the stable bound 2 sqrt(m/k) = 6.3e-5 s
+  // T grows slowly: the stuck particle follows the pull with a tangential oscillation of force
+  // amplitude rate * sqrt(m / k) = 0.06 N (0.4 % of mu N), so the onset is not triggered early
+  const double dt = 2e-6, rate = 2e3;
+  double T_slip = -1;
+  // critical damping of the normal bounce so that N is steady: c = 2 sqrt(k m)
+  const double c = 2 * std::sqrt(k * mass);
+  for (int step = 0; step < 200000 && T_slip < 0; ++step)
+  {
+    const double T = rate * step * dt;
+    std::vector<double> fp(3, 0.0), fn(s.position.size(), 0.0);
+    contact.apply({x.data(), v.data(), m.data(), 1}, s, dt, fp, fn);
+    if (contact.n_sliding() > 0)
+      T_slip = T;
+    const double a[3] = {(fp[0] + T) / mass, fp[1] / mass, (fp[2] - N - c * v[2]) / mass};
+    for (int d = 0; d < 3; ++d)
+    {
+      v[d] += dt * a[d];
+      x[d] += dt * v[d];
+    }
+  }
+  ASSERT_GT(T_slip, 0.0) << "the particle never slid";
+  // 2 %: the tolerance; the tangential oscillation (0.4 % of mu N) and the normal
+  // force's settling are the error sources
+  EXPECT_NEAR(T_slip, mu * N, 0.02 * mu * N);
+}
+
+TEST(ContactEnergy, ElasticBounceKeepsEnergy)
+{
+  // A particle dropped on a rigid face at k = 0.5 of the stability bound bounces back with its
+  // speed: the penalty is elastic and the central-difference error is second order in dt.
+  const double mass = 1e-3, r = 5e-4, v0 = 1.0, dt = 1e-6;
+  const double k = 0.5 * stable_contact_stiffness(mass, 0.0, dt);
+  const ContactSurface s = flat_surface(1, 0.01, 0.0, 0.0);
+  ContactParameters prm;
+  prm.stiffness = k;
+  prm.radius    = r;
+  PenaltyContact contact(prm, 1);
+  std::vector<double> x{0.005, 0.005, r + 1e-6}, v{0, 0, -v0}, m{mass};
+  for (int step = 0; step < 2000 && !(v[2] > 0 && x[2] > r); ++step)
+  {
+    std::vector<double> fp(3, 0.0), fn(12, 0.0);
+    contact.apply({x.data(), v.data(), m.data(), 1}, s, dt, fp, fn);
+    v[2] += dt * fp[2] / mass;
+    x[2] += dt * v[2];
+  }
+  // 1 %: the symplectic step keeps a shadow energy; with about 4 steps per contact at this
+  // stiffness the exit speed differs from v0 by the discrete-time phase error, under 1 %
+  EXPECT_NEAR(v[2], v0, 0.01 * v0);
+}
+
+TEST(CurveAnalysis, SecantModulusOfABilinearCurve)
+{
+  // linear to the peak at slope 50 GPa, then falling: the secant 40-60 % is the slope, exactly
+  std::vector<double> strain, stress;
+  for (int i = 0; i <= 100; ++i)
+  {
+    strain.push_back(1e-5 * i);
+    stress.push_back(i <= 60 ? 50e9 * 1e-5 * i : 50e9 * 1e-5 * (120 - i));
+  }
+  EXPECT_NEAR(secant_modulus(strain, stress), 50e9, 1e-6 * 50e9); // interpolation is exact here
+  std::vector<double> lateral;
+  for (double e : strain)
+    lateral.push_back(-0.25 * e);
+  EXPECT_NEAR(secant_poissons_ratio(strain, lateral, stress), 0.25, 1e-9);
+  // a curve that never rises gives no modulus
+  EXPECT_NEAR(secant_modulus(strain, std::vector<double>(101, 0.0)), 0.0, 0.0);
+}
