@@ -1,0 +1,178 @@
+#pragma once
+/// @file
+/// One SPH rock body: particles, neighbour pairs, formulation, rock model, constraints, energies.
+///
+/// Lifecycle of a time step (what the coupling layer calls, in this order):
+///   1. `compute_forces()`   stress update to the current positions, internal, viscous,
+///                            hourglass and surface-pressure forces (once per step);
+///   2. the caller adds its forces to `external_forces()` [N] (contact, gravity, ...) and may set
+///      prescribed velocities with `constrain()`;
+///   3. `dt = min(stable_time_step(), ...)`;
+///   4. `integrate(dt)`      symplectic Euler: v += dt (f_int + f_pressure + f_ext)/m, constrained
+///                            components set to their prescribed velocity (reaction recorded),
+///                            x += dt v; external forces are cleared afterwards.
+/// Units SI; stress tension-positive; energies in J (2-D: J per metre of thickness).
+
+#include <sph/neighbour_search.h>
+#include <sph/parameters.h>
+#include <sph/particle_store.h>
+#include <sph/rock_models.h>
+#include <sph/types.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace sph
+{
+  /// Energy account of a body [J] (2-D: per unit thickness).
+  struct Energies
+  {
+    double kinetic      = 0; ///< 1/2 sum m v^2
+    double internal     = 0; ///< elastic strain energy sum V 1/2 sigma:C^-1:sigma
+    double plastic      = 0; ///< plastic dissipation (integrated stress power - elastic energy)
+    double viscous      = 0; ///< dissipated by artificial viscosity
+    double hourglass    = 0; ///< work done against the hourglass forces
+    double external     = 0; ///< work of external forces, surface pressure and constraints
+    /// plastic + viscous + hourglass
+    double dissipated() const { return plastic + viscous + hourglass; }
+    /// external - (kinetic + internal + dissipated): zero for an exact integrator
+    double balance_error() const { return external - kinetic - internal - dissipated(); }
+  };
+
+  /// An SPH rock body (dim = 2: plane strain, per unit thickness; dim = 3).
+  template <int dim>
+  class Body
+  {
+  public:
+    /// Particles at `positions` [m] with `volumes` [m^dim] (e.g. from make_cylinder), at rest and
+    /// stress-free. Throws std::invalid_argument for inconsistent parameters.
+    Body(const Parameters &parameters, const MaterialParameters &material,
+         const std::vector<Vector<dim>> &positions, const std::vector<double> &volumes);
+
+    /// Number of particles.
+    unsigned int n_particles() const { return static_cast<unsigned int>(p_.size()); }
+    /// Current positions [m].
+    const std::vector<Vector<dim>> &positions() const { return p_.x; }
+    /// Velocities [m/s].
+    const std::vector<Vector<dim>> &velocities() const { return p_.v; }
+    /// Sets the velocity of particle i [m/s] (initial conditions).
+    void set_velocity(unsigned int i, const Vector<dim> &v) { p_.v[i] = v; }
+    /// Reference (initial) positions [m].
+    const std::vector<Vector<dim>> &reference_positions() const { return p_.x0; }
+    /// Masses [kg] (2-D: kg per metre of thickness).
+    const std::vector<double> &masses() const { return p_.mass; }
+    /// Current volumes [m^dim].
+    const std::vector<double> &volumes() const { return p_.volume; }
+    /// Smoothing lengths [m].
+    const std::vector<double> &smoothing_lengths() const { return p_.h; }
+    /// Cauchy stress of particle i, in-plane block [Pa], tension +.
+    Tensor<dim> stress(unsigned int i) const
+    {
+      return p_.stress[i].template topLeftCorner<dim, dim>();
+    }
+    /// Full 3x3 Cauchy stress of particle i [Pa] (2-D: sigma_zz of plane strain at (2,2)).
+    const Tensor3 &stress3(unsigned int i) const { return p_.stress[i]; }
+    /// Deformation gradient of particle i [-] (total Lagrangian; identity-based in FORM 0/1).
+    const Tensor<dim> &deformation_gradient(unsigned int i) const { return p_.F[i]; }
+    /// Material history of particle i (plastic strain, damage).
+    const MaterialState &history(unsigned int i) const { return p_.history[i]; }
+    /// Equivalent plastic strain of particle i [-].
+    double plastic_strain(unsigned int i) const { return p_.history[i].plastic_strain; }
+    /// Damage of particle i in [0, 1].
+    double damage(unsigned int i) const { return p_.history[i].damage; }
+    /// The whole particle store (read only).
+    const ParticleStore<dim> &particles() const { return p_; }
+
+    /// Forces [N] the caller adds before `integrate`; cleared by `integrate`.
+    std::vector<Vector<dim>> &external_forces() { return p_.f_ext; }
+    /// Internal force of the last `compute_forces` [N] (stress + viscosity + hourglass).
+    const std::vector<Vector<dim>> &internal_forces() const { return p_.f_int; }
+    /// Surface-pressure force of the last `compute_forces` [N].
+    const std::vector<Vector<dim>> &pressure_forces() const { return p_.f_pressure; }
+
+    /// Component `component` of particle i moves at `velocity` [m/s] until released.
+    void constrain(unsigned int i, unsigned int component, double velocity);
+    /// Frees component `component` of particle i.
+    void release(unsigned int i, unsigned int component);
+    /// Frees every constraint.
+    void release_all();
+    /// Whether component `component` of particle i is constrained.
+    bool is_constrained(unsigned int i, unsigned int component) const
+    {
+      return (constrained_[i] >> component) & 1u;
+    }
+    /// Force the constraint exerted on particle i in the last `integrate` [N] (zero in free
+    /// components): what a frictionless rigid wall would feel, with opposite sign.
+    const Vector<dim> &reaction_force(unsigned int i) const { return reaction_[i]; }
+
+    /// Pressure p [Pa], compression +, on the free surface from the next `compute_forces` on.
+    /// Surface: the area vector of particle i is a_i = -kappa V_i sum_j V_j grad W_ij (outward;
+    /// zero inside a full support, so interior particles feel nothing; the sum over a closed body
+    /// vanishes); kappa is calibrated once on a flat lattice face so that sum a_i equals the face
+    /// area. Total Lagrangian: a_i is computed in the reference configuration and pushed forward
+    /// with Nanson's formula J F^{-T}.
+    void set_surface_pressure(double p) { pressure_ = p; }
+    /// Current surface pressure [Pa], compression +.
+    double surface_pressure() const { return pressure_; }
+
+    /// tssfac * min_i h_i / (c + |v_i|) [s], c the P-wave speed sqrt((K + 4G/3)/rho).
+    double stable_time_step() const;
+    /// Stress update to the current positions and all forces there (call once per step).
+    void compute_forces();
+    /// Advances velocities and positions by dt [s] (see the file comment).
+    void integrate(double dt);
+
+    /// Energy account (see Energies).
+    Energies energies() const;
+    /// Sum of all momenta [kg m/s].
+    Vector<dim> momentum() const;
+    /// P-wave speed of the material [m/s].
+    double wave_speed() const { return wave_speed_; }
+    /// Number of neighbour pairs currently in use.
+    std::size_t n_pairs() const { return pairs_.n_pairs(); }
+    /// The neighbour pairs currently in use.
+    const PairList &pairs() const { return pairs_; }
+    /// The parameters the body was built with.
+    const Parameters &parameters() const { return prm_; }
+    /// The rock parameters in use.
+    const rock::RockParameters &rock_parameters() const { return rock_; }
+
+  private:
+    bool total_lagrangian() const;
+    bool corrected() const;
+    void build_pairs();            // pairs_, grad_w_ at the current positions
+    void compute_correction();     // L from grad_w_
+    void compute_area_vectors();   // area0_ from grad_w_
+    double calibrate_area_factor() const;
+    void update_stress_total_lagrangian();
+    void update_stress_updated_lagrangian();
+    void pair_forces();
+    void gather_forces();
+
+    Parameters             prm_;
+    MaterialParameters     material_;
+    rock::RockParameters   rock_;
+    rock::Model            model_;
+    ParticleStore<dim>     p_;
+    PairList               pairs_;
+    std::vector<Vector<dim>> grad_w_;     // per pair: grad_i W_ij (reference config in TL)
+    std::vector<Vector<dim>> pair_force_; // per pair: force on first, -force on second
+    std::vector<double>      pair_power_; // per pair: AV dissipation power [W]
+    std::vector<double>      pair_hg_power_; // per pair: hourglass power [W]
+    std::vector<Tensor<dim>> Q_;          // per particle: V0 P L (TL) or V sigma L (UL)
+    std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
+    std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)
+    std::vector<std::uint8_t> constrained_;
+    std::vector<Vector<dim>>  prescribed_;
+    std::vector<Vector<dim>>  reaction_;
+    std::vector<double>       stress_work_; // per particle: integrated stress power [J]
+    double pressure_      = 0;
+    double area_factor_   = 1;
+    double wave_speed_    = 0;
+    double dt_last_       = 0;
+    double viscous_       = 0;
+    double hourglass_     = 0;
+    double external_      = 0;
+    int    n_threads_     = 1;
+  };
+} // namespace sph

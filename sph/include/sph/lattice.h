@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// Particle lattices for the laboratory specimens. Particles sit at the cell centres of a lattice
+/// of spacing dx; their volumes are scaled so that they sum to the true body volume. Particles
+/// are emitted in lexicographic cell order (x fastest, the loading axis slowest), which is the
+/// cache-friendly order the solver keeps. The loading axis is the last coordinate (z in 3-D,
+/// y in 2-D, where "z" below means the last coordinate).
+
+#include <sph/types.h>
+
+#include <vector>
+
+namespace sph
+{
+  /// Positions and volumes of a particle body, with the cross-section areas the tests report.
+  template <int dim>
+  struct Lattice
+  {
+    std::vector<Vector<dim>> positions; ///< cell centres [m]
+    std::vector<double>      volumes;   ///< particle volumes [m^dim], sum = true body volume
+    double spacing = 0;                 ///< lattice spacing dx [m]
+    /// Cross-section normal to the loading axis (UCS / CTCS) or, for a disc, the diametral plane
+    /// x = 0 that splits (BTS): number of particles in one lattice layer times dx^(dim-1)
+    /// [m^(dim-1)].
+    double lattice_section_area = 0;
+    /// The same section of the true (smooth) body [m^(dim-1)]: pi D^2/4 for a cylinder, D t for
+    /// a disc, the block's face for a block. Divide loads by this one ("real section area").
+    double true_section_area = 0;
+    double true_volume       = 0; ///< volume of the true body [m^dim]
+  };
+
+  /// Cylinder of diameter D and length L [m]: axis z, base at z = 0, centred at x = y = 0.
+  /// In 2-D: its axial section, the rectangle |x| <= D/2, 0 <= y <= L (plane strain).
+  /// Layers along the axis are spaced exactly L/round(L/dx) (= dx when L/dx is an integer).
+  template <int dim>
+  Lattice<dim> make_cylinder(double diameter, double length, double spacing);
+
+  /// Brazilian disc of diameter D and thickness t [m]: its axis along y, |y| <= t/2, centre at
+  /// (0, 0, D/2) so that its lowest point is at z = 0 and the load acts along z.
+  /// In 2-D: the circle of diameter D centred at (0, D/2) (plane strain).
+  template <int dim>
+  Lattice<dim> make_disc(double diameter, double thickness, double spacing);
+
+  /// Box [lower, upper] [m]; each side is split into round(side/dx) cells (at least one).
+  template <int dim>
+  Lattice<dim> make_block(const Vector<dim> &lower, const Vector<dim> &upper, double spacing);
+} // namespace sph

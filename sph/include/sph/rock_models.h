@@ -1,0 +1,394 @@
+#pragma once
+/// @file
+/// Rock constitutive updates: pure inline functions (old stress, strain increment, history) ->
+/// (new stress, new history). Stress is tension-positive. Updates work on 3x3 tensors; 2-D bodies
+/// pass plane-strain increments (zero out-of-plane strain) and keep sigma_zz in the (2,2) entry.
+/// Plastic returns are made in principal stresses sorted s0 >= s1 >= s2 (s0 most tensile).
+
+#include <sph/parameters.h>
+#include <sph/particle_store.h>
+#include <sph/types.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <variant>
+
+namespace sph::rock
+{
+  using Principal = Eigen::Vector3d;
+
+  /// Parameters the updates need, derived once from MaterialParameters.
+  struct RockParameters
+  {
+    double K = 0;                  ///< bulk modulus [Pa]
+    double G = 0;                  ///< shear modulus [Pa]
+    double cohesion = 0;           ///< c [Pa]
+    double sin_phi = 0, cos_phi = 1; ///< friction angle phi
+    double sin_psi = 0;            ///< dilation angle psi (plastic potential)
+    double tensile_strength = 0;   ///< Rankine cut-off [Pa]; <= 0: none
+    double hb_sigma_ci = 0, hb_mb = 1, hb_s = 1, hb_a = 0.5; ///< Hoek-Brown [Pa, -, -, -]
+    double softening_strain = 0;   ///< kappa at which the strength is residual [-]; 0: no softening
+    double residual_fraction = 1;  ///< residual / peak strength [-]
+  };
+
+  /// RockParameters from the user-facing MaterialParameters.
+  inline RockParameters make_rock_parameters(const MaterialParameters &m)
+  {
+    RockParameters p;
+    const double E = m.youngs_modulus, nu = m.poissons_ratio;
+    p.K        = E / (3.0 * (1.0 - 2.0 * nu));
+    p.G        = E / (2.0 * (1.0 + nu));
+    p.cohesion = m.cohesion;
+    p.sin_phi  = std::sin(m.friction_angle);
+    p.cos_phi  = std::cos(m.friction_angle);
+    p.sin_psi  = std::sin(m.dilation_angle);
+    p.tensile_strength =
+      (m.model == RockModel::mohr_coulomb_cutoff) ? m.tensile_strength : 0.0;
+    p.hb_sigma_ci = m.hb_sigma_ci;
+    p.hb_mb       = m.hb_mb;
+    p.hb_s        = m.hb_s;
+    p.hb_a        = m.hb_a;
+    if (m.model == RockModel::hoek_brown)
+      p.tensile_strength = m.tensile_strength > 0 ? std::min(m.tensile_strength,
+                                                             m.hb_s * m.hb_sigma_ci / m.hb_mb) :
+                                                    m.hb_s * m.hb_sigma_ci / m.hb_mb;
+    p.softening_strain  = m.softening_strain;
+    p.residual_fraction = m.residual_fraction;
+    return p;
+  }
+
+  /// New stress and history after one increment.
+  struct StressUpdate
+  {
+    Tensor3       stress; ///< Cauchy stress, tension + [Pa]
+    MaterialState state;  ///< updated history
+  };
+
+  /// Damage d = min(kappa / softening_strain, 1) (0 without softening) [-].
+  inline double damage_of(const double kappa, const RockParameters &p)
+  {
+    return p.softening_strain > 0 ? std::min(kappa / p.softening_strain, 1.0) : 0.0;
+  }
+
+  /// Strength factor 1 - (1 - residual_fraction) d: multiplies c and sigma_t [-].
+  inline double strength_factor(const double damage, const RockParameters &p)
+  {
+    return 1.0 - (1.0 - p.residual_fraction) * damage;
+  }
+
+  /// Elastic predictor: stress_old + C : de (isotropic).
+  inline Tensor3 elastic_trial(const Tensor3 &stress_old, const Tensor3 &de, const RockParameters &p)
+  {
+    const double tr = de.trace();
+    return stress_old + 2.0 * p.G * de + (p.K - 2.0 / 3.0 * p.G) * tr * Tensor3::Identity();
+  }
+
+  /// D * b in principal space for D = lambda 1 1^T + 2G I.
+  inline Principal principal_stiffness_times(const Principal &b, const RockParameters &p)
+  {
+    return (p.K - 2.0 / 3.0 * p.G) * b.sum() * Principal::Ones() + 2.0 * p.G * b;
+  }
+
+  /// Plastic strain (principal) D^{-1} (s_trial - s_new).
+  inline Principal principal_compliance_times(const Principal &ds, const RockParameters &p)
+  {
+    const double mean = ds.sum() / 3.0;
+    return (ds - mean * Principal::Ones()) / (2.0 * p.G) + mean / (3.0 * p.K) * Principal::Ones();
+  }
+
+  /// Mohr-Coulomb yield function f = s0 (1 + sin phi) - s2 (1 - sin phi) - 2 c cos phi [Pa].
+  inline double mohr_coulomb_yield(const Principal &s, const double c, const double sin_phi,
+                                   const double cos_phi)
+  {
+    return s[0] * (1.0 + sin_phi) - s[2] * (1.0 - sin_phi) - 2.0 * c * cos_phi;
+  }
+
+  /// Closest-point return (in the energy norm, non-associated flow with dilation psi) of sorted
+  /// principal stresses onto the Mohr-Coulomb surface of cohesion c: main plane, the edges
+  /// s0 = s1 and s1 = s2, or the apex c cot(phi). Returns false if `s` was admissible.
+  inline bool return_mohr_coulomb(Principal &s, const double c, const double sin_phi,
+                                  const double cos_phi, const double sin_psi,
+                                  const RockParameters &p)
+  {
+    const double tol = 1e-14 * (std::abs(c) + s.cwiseAbs().maxCoeff());
+    const double fA  = mohr_coulomb_yield(s, c, sin_phi, cos_phi);
+    if (fA <= tol)
+      return false;
+    const Principal aA(1.0 + sin_phi, 0.0, -(1.0 - sin_phi));
+    const Principal bA(1.0 + sin_psi, 0.0, -(1.0 - sin_psi));
+    const Principal DbA = principal_stiffness_times(bA, p);
+    // main plane
+    Principal r = s - fA / aA.dot(DbA) * DbA;
+    if (r[0] >= r[1] && r[1] >= r[2])
+      {
+        s = r;
+        return true;
+      }
+    // an edge: the second plane has the same form with s1 in place of s0 (edge s0 = s1) or of s2
+    // (edge s1 = s2)
+    const bool upper = r[1] > r[0];
+    Principal  aB, bB;
+    if (upper)
+      {
+        aB = Principal(0.0, 1.0 + sin_phi, -(1.0 - sin_phi));
+        bB = Principal(0.0, 1.0 + sin_psi, -(1.0 - sin_psi));
+      }
+    else
+      {
+        aB = Principal(1.0 + sin_phi, -(1.0 - sin_phi), 0.0);
+        bB = Principal(1.0 + sin_psi, -(1.0 - sin_psi), 0.0);
+      }
+    const double    fB  = aB.dot(s) - 2.0 * c * cos_phi;
+    const Principal DbB = principal_stiffness_times(bB, p);
+    const double    a11 = aA.dot(DbA), a12 = aA.dot(DbB), a21 = aB.dot(DbA), a22 = aB.dot(DbB);
+    const double    det = a11 * a22 - a12 * a21;
+    const double    lA  = (fA * a22 - a12 * fB) / det;
+    const double    lB  = (a11 * fB - a21 * fA) / det;
+    r                   = s - lA * DbA - lB * DbB;
+    const bool beyond_apex = upper ? (r[2] > r[0]) : (r[0] < r[1]);
+    if (lA >= 0.0 && lB >= 0.0 && !beyond_apex)
+      {
+        if (upper)
+          r[1] = r[0]; // equal by construction; remove round-off
+        else
+          r[2] = r[1];
+        s = r;
+        return true;
+      }
+    // apex
+    const double apex = sin_phi > 0 ? c * cos_phi / sin_phi : s.sum() / 3.0;
+    s                 = Principal::Constant(apex);
+    return true;
+  }
+
+  /// Rankine (tension cut-off) return with associated flow: no principal stress above `st` [Pa].
+  /// Returns false if `s` was admissible.
+  inline bool return_rankine(Principal &s, const double st, const RockParameters &p)
+  {
+    if (s[0] <= st)
+      return false;
+    const double lam = p.K - 2.0 / 3.0 * p.G, d = lam + 2.0 * p.G;
+    // active set grows from the most tensile principal stress
+    for (int k = 1; k <= 3; ++k)
+      {
+        Principal r = s;
+        if (k == 1)
+          {
+            const double dl = (s[0] - st) / d;
+            r[0]            = st;
+            r[1] -= dl * lam;
+            r[2] -= dl * lam;
+            if (r[1] <= st)
+              {
+                s = r;
+                return true;
+              }
+          }
+        else if (k == 2)
+          {
+            // [d lam; lam d] [l0; l1] = [s0 - st; s1 - st]
+            const double e0 = s[0] - st, e1 = s[1] - st, det = d * d - lam * lam;
+            const double l0 = (d * e0 - lam * e1) / det, l1 = (d * e1 - lam * e0) / det;
+            r[0] = st;
+            r[1] = st;
+            r[2] -= lam * (l0 + l1);
+            if (r[2] <= st && l0 >= 0 && l1 >= 0)
+              {
+                s = r;
+                return true;
+              }
+          }
+        else
+          {
+            s = Principal::Constant(st);
+            return true;
+          }
+      }
+    return true;
+  }
+
+  /// Sorted principal stresses (s0 >= s1 >= s2) and the matching eigenvectors (columns).
+  inline void principal_decomposition(const Tensor3 &sigma, Principal &s, Tensor3 &Q)
+  {
+    Eigen::SelfAdjointEigenSolver<Tensor3> eig(sigma);
+    const auto &ev = eig.eigenvalues(); // ascending
+    s              = Principal(ev[2], ev[1], ev[0]);
+    Q.col(0)       = eig.eigenvectors().col(2);
+    Q.col(1)       = eig.eigenvectors().col(1);
+    Q.col(2)       = eig.eigenvectors().col(0);
+  }
+
+  /// Linear isotropic elasticity: stress_old + C : de.
+  inline StressUpdate update_elastic(const Tensor3 &stress_old, const Tensor3 &strain_increment,
+                                     const MaterialState &old_state, const RockParameters &prm)
+  {
+    return {elastic_trial(stress_old, strain_increment, prm), old_state};
+  }
+
+  /// Implementation of the plastic models: `surface(s, factor)` returns s onto the yield surface
+  /// at strength factor `factor` (softening) and says whether it was plastic. The softening is
+  /// implicit: the strength is that of the updated plastic strain, by fixed-point iteration.
+  template <typename Surface>
+  inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
+                                     const MaterialState &old_state, const RockParameters &prm,
+                                     const Surface &surface)
+  {
+    const Tensor3 trial = elastic_trial(stress_old, de, prm);
+    Principal     s_trial;
+    Tensor3       Q;
+    {
+      // cheap admissibility check first
+      Principal s = s_trial;
+      Eigen::SelfAdjointEigenSolver<Tensor3> eig;
+      eig.computeDirect(trial, Eigen::EigenvaluesOnly);
+      s = Principal(eig.eigenvalues()[2], eig.eigenvalues()[1], eig.eigenvalues()[0]);
+      const double factor = strength_factor(old_state.damage, prm);
+      Principal    r      = s;
+      const double scale  = 1e-9 * (s.cwiseAbs().maxCoeff() + prm.cohesion + prm.hb_sigma_ci);
+      if (!surface(r, factor) || (r - s).cwiseAbs().maxCoeff() < scale)
+        return {trial, old_state};
+    }
+    principal_decomposition(trial, s_trial, Q);
+    Principal s      = s_trial;
+    double    dkappa = 0;
+    for (int it = 0; it < 50; ++it)
+      {
+        const double damage = std::max(old_state.damage,
+                                       damage_of(old_state.plastic_strain + dkappa, prm));
+        s                   = s_trial;
+        surface(s, strength_factor(damage, prm));
+        const Principal ep = principal_compliance_times(s_trial - s, prm);
+        const double    dk = std::sqrt(2.0 / 3.0 * ep.squaredNorm());
+        const bool      converged = std::abs(dk - dkappa) <= 1e-13 * dk + 1e-300;
+        dkappa                    = dk;
+        if (prm.softening_strain <= 0 || converged)
+          break;
+      }
+    StressUpdate out;
+    out.stress                = Q * s.asDiagonal() * Q.transpose();
+    out.state.plastic_strain  = old_state.plastic_strain + dkappa;
+    out.state.damage = std::max(old_state.damage, damage_of(out.state.plastic_strain, prm));
+    return out;
+  }
+
+  /// Mohr-Coulomb as LS-DYNA's *MAT_MOHR_COULOMB (non-associated, dilation psi), with the
+  /// Rankine tension cut-off when prm.tensile_strength > 0. Cohesion and tensile strength soften
+  /// linearly with the equivalent plastic strain to residual_fraction at softening_strain.
+  inline StressUpdate update_mohr_coulomb(const Tensor3 &stress_old, const Tensor3 &strain_increment,
+                                          const MaterialState &old_state,
+                                          const RockParameters &prm)
+  {
+    const auto surface = [&prm](Principal &s, const double factor) {
+      const double c  = prm.cohesion * factor;
+      bool         pl = false;
+      if (prm.tensile_strength <= 0)
+        return return_mohr_coulomb(s, c, prm.sin_phi, prm.cos_phi, prm.sin_psi, prm);
+      const double st = prm.tensile_strength * factor;
+      // alternate the two returns until both hold (converges in a few sweeps)
+      for (int sweep = 0; sweep < 30; ++sweep)
+        {
+          const bool a = return_mohr_coulomb(s, c, prm.sin_phi, prm.cos_phi, prm.sin_psi, prm);
+          const bool b = return_rankine(s, st, prm);
+          pl           = pl || a || b;
+          if (!b)
+            break;
+        }
+      return pl;
+    };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface);
+  }
+
+  /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), returned by
+  /// successive tangent Mohr-Coulomb planes (converged to 1e-12), dilation psi as the potential,
+  /// tension cut-off at s sigma_ci / m_b. Softening scales s (and the cut-off) by the strength factor.
+  inline StressUpdate update_hoek_brown(const Tensor3 &stress_old, const Tensor3 &strain_increment,
+                                        const MaterialState &old_state, const RockParameters &prm)
+  {
+    const auto surface = [&prm](Principal &s, const double factor) {
+      const double sci = prm.hb_sigma_ci, mb = prm.hb_mb, a = prm.hb_a;
+      const double ss  = prm.hb_s * factor;
+      const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
+      const auto   f   = [&](const Principal &t) {
+        const double base = std::max(-mb * t[0] / sci + ss, 0.0);
+        return (t[0] - t[2]) - sci * std::pow(base, a);
+      };
+      bool            pl      = false;
+      const Principal s_trial = s;
+      if (f(s) > 1e-12 * sci)
+        {
+          pl          = true;
+          Principal r = s;
+          for (int it = 0; it < 60; ++it)
+            {
+              // tangent plane of the envelope p1 = p3 + sci (mb p3/sci + s)^a at p3 = -r[0]
+              const double p3   = std::max(-r[0], -ss * sci / mb * (1.0 - 1e-9));
+              const double base = mb * p3 / sci + ss;
+              const double N    = 1.0 + a * mb * std::pow(base, a - 1.0);
+              const double q0   = p3 + sci * std::pow(base, a) - N * p3;
+              const double sphi = (N - 1.0) / (N + 1.0), cphi = std::sqrt(1.0 - sphi * sphi);
+              const double c    = q0 * (1.0 - sphi) / (2.0 * cphi);
+              Principal    t    = s_trial;
+              return_mohr_coulomb(t, c, sphi, cphi, prm.sin_psi, prm);
+              const bool done = (t - r).cwiseAbs().maxCoeff() <= 1e-13 * sci;
+              r               = t;
+              if (done)
+                break;
+            }
+          s = r;
+        }
+      pl = return_rankine(s, st, prm) || pl;
+      return pl;
+    };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface);
+  }
+
+  /// Run-time model choice: dispatched once per particle loop with std::visit.
+  struct Elastic
+  {
+    StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
+                            const RockParameters &p) const
+    {
+      return update_elastic(s, de, h, p);
+    }
+  };
+  struct MohrCoulomb
+  {
+    StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
+                            const RockParameters &p) const
+    {
+      return update_mohr_coulomb(s, de, h, p);
+    }
+  };
+  struct HoekBrown
+  {
+    StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
+                            const RockParameters &p) const
+    {
+      return update_hoek_brown(s, de, h, p);
+    }
+  };
+  using Model = std::variant<Elastic, MohrCoulomb, HoekBrown>;
+
+  /// The functor of a RockModel.
+  inline Model make_model(const RockModel m)
+  {
+    switch (m)
+      {
+        case RockModel::elastic:
+          return Elastic{};
+        case RockModel::hoek_brown:
+          return HoekBrown{};
+        default:
+          return MohrCoulomb{};
+      }
+  }
+
+  /// Elastic strain energy density 1/2 sigma : C^{-1} : sigma [J/m^3].
+  inline double elastic_energy_density(const Tensor3 &s, const RockParameters &p)
+  {
+    const double  mean = s.trace() / 3.0;
+    const Tensor3 dev  = s - mean * Tensor3::Identity();
+    return 0.5 * (dev.squaredNorm() / (2.0 * p.G) + mean * mean / p.K);
+  }
+} // namespace sph::rock

@@ -1,0 +1,528 @@
+#include <sph/body.h>
+#include <sph/kernels.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace sph
+{
+  namespace
+  {
+    /// [begin, end) of thread t's static chunk of n items among T threads.
+    inline void chunk(const std::size_t n, const int t, const int T, std::size_t &begin,
+                      std::size_t &end)
+    {
+      begin = n * t / T;
+      end   = n * (t + 1) / T;
+    }
+
+    /// Sum of f(k) for k in [0, n): static chunks per thread, partial sums added in thread order,
+    /// so the result is the same in every run with the same number of threads.
+    template <typename Function>
+    double deterministic_sum(const std::size_t n, const int n_threads, const Function &f)
+    {
+      std::vector<double> partial(n_threads, 0.0);
+#pragma omp parallel num_threads(n_threads)
+      {
+        const int   t = omp_get_thread_num(), T = omp_get_num_threads();
+        std::size_t b, e;
+        chunk(n, t, T, b, e);
+        double s = 0;
+        for (std::size_t k = b; k < e; ++k)
+          s += f(k);
+        partial[t] = s;
+      }
+      double s = 0;
+      for (const double v : partial)
+        s += v;
+      return s;
+    }
+
+    void require(const bool ok, const std::string &message)
+    {
+      if (!ok)
+        throw std::invalid_argument("sph::Body: " + message);
+    }
+
+    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w.
+    inline Tensor3 hughes_winget(const Tensor3 &w)
+    {
+      const Tensor3 I = Tensor3::Identity();
+      return (I - 0.5 * w).inverse() * (I + 0.5 * w);
+    }
+  } // namespace
+
+  template <int dim>
+  Body<dim>::Body(const Parameters &parameters, const MaterialParameters &material,
+                  const std::vector<Vector<dim>> &positions, const std::vector<double> &volumes)
+    : prm_(parameters)
+    , material_(material)
+  {
+    require(prm_.spacing > 0, "Parameters::spacing must be > 0 [m]");
+    require(prm_.cslh > 0, "Parameters::cslh must be > 0 (LS-DYNA default 1.2)");
+    require(prm_.tssfac > 0 && prm_.tssfac <= 1.0, "Parameters::tssfac must be in (0, 1]");
+    const int f = static_cast<int>(prm_.form);
+    require(f == 0 || f == 1 || f == 7 || f == 8, "Parameters::form must be 0, 1, 7 or 8");
+    require(prm_.av_alpha >= 0 && prm_.av_beta >= 0, "artificial viscosity must be >= 0");
+    require(prm_.hourglass >= 0, "Parameters::hourglass must be >= 0");
+    require(material_.density > 0, "MaterialParameters::density must be > 0 [kg/m^3]");
+    require(material_.youngs_modulus > 0, "MaterialParameters::youngs_modulus must be > 0 [Pa]");
+    require(material_.poissons_ratio > -1 && material_.poissons_ratio < 0.5,
+            "MaterialParameters::poissons_ratio must be in (-1, 0.5)");
+    require(material_.model == RockModel::elastic || material_.cohesion >= 0,
+            "MaterialParameters::cohesion must be >= 0 [Pa]");
+    require(material_.model != RockModel::mohr_coulomb_cutoff || material_.tensile_strength > 0,
+            "mohr_coulomb_cutoff needs MaterialParameters::tensile_strength > 0 [Pa]");
+    require(material_.model != RockModel::hoek_brown ||
+              (material_.hb_sigma_ci > 0 && material_.hb_mb > 0 && material_.hb_s > 0 &&
+               material_.hb_a > 0 && material_.hb_a < 1),
+            "hoek_brown needs hb_sigma_ci > 0, hb_mb > 0, hb_s > 0 and 0 < hb_a < 1");
+    require(material_.residual_fraction >= 0 && material_.residual_fraction <= 1,
+            "MaterialParameters::residual_fraction must be in [0, 1]");
+    require(positions.size() == volumes.size(), "positions and volumes differ in length");
+    require(!positions.empty(), "no particles");
+
+    n_threads_ = prm_.n_threads > 0 ? prm_.n_threads : omp_get_max_threads();
+    rock_      = rock::make_rock_parameters(material_);
+    model_     = rock::make_model(material_.model);
+    wave_speed_ = std::sqrt((rock_.K + 4.0 / 3.0 * rock_.G) / material_.density);
+
+    const std::size_t n = positions.size();
+    p_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        require(volumes[i] > 0, "particle volumes must be > 0");
+        p_.x[i]       = positions[i];
+        p_.x0[i]      = positions[i];
+        p_.volume0[i] = volumes[i];
+        p_.volume[i]  = volumes[i];
+        p_.density[i] = material_.density;
+        p_.mass[i]    = material_.density * volumes[i];
+        p_.h[i]       = prm_.cslh * prm_.spacing;
+      }
+    constrained_.assign(n, 0);
+    prescribed_.assign(n, Vector<dim>::Zero());
+    reaction_.assign(n, Vector<dim>::Zero());
+    stress_work_.assign(n, 0.0);
+    Q_.assign(n, Tensor<dim>::Zero());
+    area0_.assign(n, Vector<dim>::Zero());
+
+    build_pairs();
+    compute_correction();
+    compute_area_vectors();
+    area_factor_ = calibrate_area_factor();
+    // F at the reference configuration: identity by construction of L
+    F_prev_.assign(n, Tensor<dim>::Identity());
+  }
+
+  template <int dim>
+  bool Body<dim>::total_lagrangian() const
+  {
+    return prm_.form == Formulation::total_lagrangian ||
+           prm_.form == Formulation::total_lagrangian_corrected;
+  }
+
+  template <int dim>
+  bool Body<dim>::corrected() const
+  {
+    return prm_.form == Formulation::total_lagrangian_corrected ||
+           prm_.form == Formulation::updated_lagrangian_corrected;
+  }
+
+  template <int dim>
+  void Body<dim>::build_pairs()
+  {
+    double h_max = 0;
+    for (const double h : p_.h)
+      h_max = std::max(h_max, h);
+    find_pairs<dim>(p_.x, 2.0 * h_max, pairs_);
+    const std::size_t n_p = pairs_.n_pairs();
+    grad_w_.resize(n_p);
+    pair_force_.resize(n_p);
+    pair_power_.resize(n_p);
+    pair_hg_power_.resize(n_p);
+    const KernelType kernel = prm_.kernel;
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long p = 0; p < static_cast<long>(n_p); ++p)
+      {
+        const int i = pairs_.first[p], j = pairs_.second[p];
+        grad_w_[p]  = kernels::grad_w<dim>(kernel, p_.x[i] - p_.x[j], 0.5 * (p_.h[i] + p_.h[j]));
+      }
+  }
+
+  template <int dim>
+  void Body<dim>::compute_correction()
+  {
+    // L_i = A_i^{-T}, A_i = sum_j V_j (x_j - x_i) grad_i W_ij^T: corrected gradients reproduce the
+    // gradient of any linear field exactly. TL always keeps L (F uses it); the force uses it
+    // only in the corrected forms.
+    const bool need = corrected() || total_lagrangian();
+    const std::size_t n = p_.size();
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i)
+      {
+        if (!need)
+          {
+            p_.L[i].setIdentity();
+            continue;
+          }
+        Tensor<dim> A = Tensor<dim>::Zero();
+        for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+          {
+            const std::int32_t p = pairs_.incidence[k];
+            const std::int32_t j = pairs_.other(p, i);
+            const Vector<dim>  g = (pairs_.first[p] == i) ? grad_w_[p] : Vector<dim>(-grad_w_[p]);
+            A.noalias() += p_.volume[j] * (p_.x[j] - p_.x[i]) * g.transpose();
+          }
+        // a particle without enough neighbours keeps plain gradients
+        const double det = A.determinant();
+        if (std::abs(det) > 1e-3)
+          p_.L[i] = A.inverse().transpose();
+        else
+          p_.L[i].setIdentity();
+      }
+  }
+
+  template <int dim>
+  void Body<dim>::compute_area_vectors()
+  {
+    const std::size_t n = p_.size();
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i)
+      {
+        Vector<dim> s = Vector<dim>::Zero();
+        for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+          {
+            const std::int32_t p = pairs_.incidence[k];
+            const std::int32_t j = pairs_.other(p, i);
+            if (pairs_.first[p] == i)
+              s += p_.volume[j] * grad_w_[p];
+            else
+              s -= p_.volume[j] * grad_w_[p];
+          }
+        area0_[i] = -p_.volume[i] * s;
+      }
+  }
+
+  template <int dim>
+  double Body<dim>::calibrate_area_factor() const
+  {
+    // A flat face z = 0 of a lattice of unit spacing: the sum of the area vectors of one column
+    // must be the column's face area 1.
+    const double h = prm_.cslh;
+    const int    m = static_cast<int>(std::ceil(2.0 * h)) + 1, depth = 2 * m + 2;
+    std::vector<Vector<dim>> x;
+    if constexpr (dim == 3)
+      {
+        for (int l = 0; l < depth; ++l)
+          for (int a = -m; a <= m; ++a)
+            for (int b = -m; b <= m; ++b)
+              x.emplace_back(a, b, -(l + 0.5));
+      }
+    else
+      {
+        for (int l = 0; l < depth; ++l)
+          for (int a = -m; a <= m; ++a)
+            x.emplace_back(a, -(l + 0.5));
+      }
+    double sum = 0;
+    for (const auto &xi : x)
+      {
+        bool central = true;
+        for (int d = 0; d < dim - 1; ++d)
+          central = central && std::abs(xi[d]) < 0.5;
+        if (!central || xi[dim - 1] < -(m + 1.5))
+          continue;
+        Vector<dim> s = Vector<dim>::Zero();
+        for (const auto &xj : x)
+          s += kernels::grad_w<dim>(prm_.kernel, xi - xj, h);
+        sum += -s[dim - 1];
+      }
+    return sum > 0 ? 1.0 / sum : 1.0;
+  }
+
+  template <int dim>
+  void Body<dim>::constrain(const unsigned int i, const unsigned int component,
+                            const double velocity)
+  {
+    constrained_[i] |= static_cast<std::uint8_t>(1u << component);
+    prescribed_[i][component] = velocity;
+  }
+
+  template <int dim>
+  void Body<dim>::release(const unsigned int i, const unsigned int component)
+  {
+    constrained_[i] &= static_cast<std::uint8_t>(~(1u << component));
+  }
+
+  template <int dim>
+  void Body<dim>::release_all()
+  {
+    std::fill(constrained_.begin(), constrained_.end(), 0);
+  }
+
+  template <int dim>
+  double Body<dim>::stable_time_step() const
+  {
+    double dt = std::numeric_limits<double>::max();
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      dt = std::min(dt, p_.h[i] / (wave_speed_ + p_.v[i].norm()));
+    return prm_.tssfac * dt;
+  }
+
+  template <int dim>
+  void Body<dim>::update_stress_total_lagrangian()
+  {
+    const std::size_t n   = p_.size();
+    const bool        cor = corrected();
+    std::visit(
+      [&](const auto &model) {
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+        for (long i = 0; i < static_cast<long>(n); ++i)
+          {
+            Tensor<dim> A = Tensor<dim>::Zero();
+            for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+              {
+                const std::int32_t p = pairs_.incidence[k];
+                const std::int32_t j = pairs_.other(p, i);
+                const double       s = (pairs_.first[p] == i) ? p_.volume0[j] : -p_.volume0[j];
+                A.noalias() += (s * (p_.x[j] - p_.x[i])) * grad_w_[p].transpose();
+              }
+            const Tensor<dim> F = A * p_.L[i].transpose();
+            // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
+            const Tensor<dim> G = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
+            const Tensor3     g = embed<dim>(G);
+            const Tensor3     de = 0.5 * (g + g.transpose());
+            const Tensor3     R  = hughes_winget(0.5 * (g - g.transpose()));
+            const Tensor3     rotated = R * p_.stress[i] * R.transpose();
+            const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
+            const double J = F.determinant();
+            stress_work_[i] +=
+              p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
+            p_.stress[i]  = up.stress;
+            p_.history[i] = up.state;
+            F_prev_[i]    = F;
+            p_.F[i]       = F;
+            p_.volume[i]  = p_.volume0[i] * J;
+            p_.density[i] = p_.mass[i] / p_.volume[i];
+            // first Piola-Kirchhoff P = J sigma F^{-T}
+            const Tensor<dim> P =
+              J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
+            Q_[i] = cor ? Tensor<dim>(p_.volume0[i] * P * p_.L[i]) : Tensor<dim>(p_.volume0[i] * P);
+          }
+      },
+      model_);
+  }
+
+  template <int dim>
+  void Body<dim>::update_stress_updated_lagrangian()
+  {
+    build_pairs();
+    compute_correction();
+    if (pressure_ != 0.0)
+      compute_area_vectors();
+    const std::size_t n  = p_.size();
+    const double      dt = dt_last_;
+    const bool        evolve_h = prm_.evolve_h;
+    std::visit(
+      [&](const auto &model) {
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+        for (long i = 0; i < static_cast<long>(n); ++i)
+          {
+            Tensor<dim> A = Tensor<dim>::Zero();
+            for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+              {
+                const std::int32_t p = pairs_.incidence[k];
+                const std::int32_t j = pairs_.other(p, i);
+                const double       s = (pairs_.first[p] == i) ? p_.volume[j] : -p_.volume[j];
+                A.noalias() += (s * (p_.v[j] - p_.v[i])) * grad_w_[p].transpose();
+              }
+            const Tensor<dim> grad_v = A * p_.L[i].transpose();
+            const Tensor3     g      = embed<dim>(Tensor<dim>(grad_v * dt));
+            const Tensor3     de     = 0.5 * (g + g.transpose());
+            const Tensor3     R      = hughes_winget(0.5 * (g - g.transpose()));
+            const Tensor3     rotated = R * p_.stress[i] * R.transpose();
+            const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
+            stress_work_[i] += p_.volume[i] * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
+            p_.stress[i]  = up.stress;
+            p_.history[i] = up.state;
+            const double tr = de.trace();
+            p_.volume[i] *= std::exp(tr);
+            p_.density[i] = p_.mass[i] / p_.volume[i];
+            if (evolve_h)
+              p_.h[i] *= std::exp(tr / dim);
+            p_.F[i] = (Tensor<dim>::Identity() + grad_v * dt) * p_.F[i];
+            Q_[i]   = p_.volume[i] * p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
+          }
+      },
+      model_);
+    dt_last_ = 0; // a second call at the same positions changes nothing
+  }
+
+  template <int dim>
+  void Body<dim>::pair_forces()
+  {
+    const bool        tl    = total_lagrangian();
+    const std::size_t n_p   = pairs_.n_pairs();
+    const double      alpha = prm_.av_alpha, beta = prm_.av_beta, c = wave_speed_;
+    const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
+    const bool        av    = alpha > 0 || beta > 0;
+    const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
+    const KernelType  kernel = prm_.kernel;
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long p = 0; p < static_cast<long>(n_p); ++p)
+      {
+        const int i = pairs_.first[p], j = pairs_.second[p];
+        const Vector<dim> &gw = grad_w_[p];
+        // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
+        Vector<dim> f = (V[j] * Q_[i] + V[i] * Q_[j]) * gw;
+        double      power = 0, hg_power = 0;
+        const Vector<dim> xij = p_.x[i] - p_.x[j];
+        const Vector<dim> vij = p_.v[i] - p_.v[j];
+        const double      r2  = xij.squaredNorm();
+        if (av)
+          {
+            const double vr = vij.dot(xij);
+            if (vr < 0 && r2 > 0)
+              {
+                const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
+                const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
+                const double rho = 0.5 * (p_.density[i] + p_.density[j]);
+                const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
+                // grad W along the current pair direction, magnitude of the cached gradient
+                const Vector<dim> fv =
+                  (p_.mass[i] * p_.mass[j] * Pi * gw.norm() / std::sqrt(r2)) * xij;
+                f += fv;
+                power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
+              }
+          }
+        if (hg > 0 && r2 > 0)
+          {
+            // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
+            const Vector<dim> X   = p_.x0[j] - p_.x0[i];
+            const Vector<dim> x   = -xij;
+            const double      r   = std::sqrt(r2);
+            const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
+            const double      delta = err.dot(x) / r;
+            const double      X2    = X.squaredNorm();
+            const double      W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
+            const double      g  = hg * V[i] * V[j] * W0 * delta / X2;
+            const Vector<dim> fh = (-g / r) * x; // on i; +g x/r on j
+            f += fh;
+            hg_power = fh.dot(vij);
+          }
+        pair_force_[p]    = f;
+        pair_power_[p]    = power;
+        pair_hg_power_[p] = hg_power;
+      }
+  }
+
+  template <int dim>
+  void Body<dim>::gather_forces()
+  {
+    const std::size_t n  = p_.size();
+    const bool        tl = total_lagrangian();
+    const double      pa = pressure_ * area_factor_;
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i)
+      {
+        Vector<dim> f = Vector<dim>::Zero();
+        for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+          {
+            const std::int32_t p = pairs_.incidence[k];
+            if (pairs_.first[p] == i)
+              f += pair_force_[p];
+            else
+              f -= pair_force_[p];
+          }
+        p_.f_int[i] = f;
+        if (pa != 0.0)
+          {
+            const Vector<dim> a =
+              tl ? Vector<dim>(p_.F[i].determinant() * p_.F[i].inverse().transpose() * area0_[i]) :
+                   area0_[i];
+            p_.f_pressure[i] = -pa * a;
+          }
+        else
+          p_.f_pressure[i].setZero();
+      }
+  }
+
+  template <int dim>
+  void Body<dim>::compute_forces()
+  {
+    if (total_lagrangian())
+      update_stress_total_lagrangian();
+    else
+      update_stress_updated_lagrangian();
+    pair_forces();
+    gather_forces();
+  }
+
+  template <int dim>
+  void Body<dim>::integrate(const double dt)
+  {
+    const std::size_t n = p_.size();
+    external_ += deterministic_sum(n, n_threads_, [&](const std::size_t i) {
+      const Vector<dim> f = p_.f_int[i] + p_.f_pressure[i] + p_.f_ext[i];
+      Vector<dim>       v = p_.v[i] + (dt / p_.mass[i]) * f;
+      Vector<dim>       r = Vector<dim>::Zero();
+      if (constrained_[i])
+        for (int d = 0; d < dim; ++d)
+          if ((constrained_[i] >> d) & 1u)
+            {
+              r[d] = p_.mass[i] * (prescribed_[i][d] - p_.v[i][d]) / dt - f[d];
+              v[d] = prescribed_[i][d];
+            }
+      reaction_[i] = r;
+      p_.v[i]      = v;
+      p_.x[i] += dt * v;
+      const double work = (p_.f_ext[i] + p_.f_pressure[i] + r).dot(v) * dt;
+      p_.f_ext[i].setZero();
+      return work;
+    });
+    const std::size_t n_p = pairs_.n_pairs();
+    viscous_ -= dt * deterministic_sum(n_p, n_threads_,
+                                       [&](const std::size_t p) { return pair_power_[p]; });
+    hourglass_ -= dt * deterministic_sum(n_p, n_threads_,
+                                         [&](const std::size_t p) { return pair_hg_power_[p]; });
+    dt_last_ = dt;
+  }
+
+  template <int dim>
+  Energies Body<dim>::energies() const
+  {
+    Energies e;
+    const std::size_t n = p_.size();
+    e.kinetic = deterministic_sum(n, n_threads_, [&](const std::size_t i) {
+      return 0.5 * p_.mass[i] * p_.v[i].squaredNorm();
+    });
+    e.internal = deterministic_sum(n, n_threads_, [&](const std::size_t i) {
+      return p_.volume[i] * rock::elastic_energy_density(p_.stress[i], rock_);
+    });
+    const double work =
+      deterministic_sum(n, n_threads_, [&](const std::size_t i) { return stress_work_[i]; });
+    e.plastic   = work - e.internal;
+    e.viscous   = viscous_;
+    e.hourglass = hourglass_;
+    e.external  = external_;
+    return e;
+  }
+
+  template <int dim>
+  Vector<dim> Body<dim>::momentum() const
+  {
+    Vector<dim> m = Vector<dim>::Zero();
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      m += p_.mass[i] * p_.v[i];
+    return m;
+  }
+
+  template class Body<2>;
+  template class Body<3>;
+} // namespace sph
