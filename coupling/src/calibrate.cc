@@ -1,0 +1,122 @@
+#include <coupling/calibrate.h>
+#include <coupling/cli.h>
+#include <coupling/material_table.h>
+#include <coupling/run_case.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+
+namespace coupling
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    double radians(double deg) { return deg * pi / 180.0; }
+  } // namespace
+
+  MohrCoulombStrength calibrate_mohr_coulomb(const double ucs, const double bts)
+  {
+    if (!(bts > 0 && ucs > bts) || !std::isfinite(ucs))
+      throw std::invalid_argument("calibrate_mohr_coulomb: need 0 < BTS < UCS");
+    const double sin_phi = (ucs - bts) / (ucs + bts);
+    const double phi = std::asin(sin_phi);
+    return {ucs * (1.0 - sin_phi) / (2.0 * std::cos(phi)), phi * 180.0 / pi};
+  }
+
+  double mohr_coulomb_ucs(const MohrCoulombStrength &s)
+  {
+    const double phi = radians(s.friction_angle);
+    return 2.0 * s.cohesion * std::cos(phi) / (1.0 - std::sin(phi));
+  }
+
+  double mohr_coulomb_bts(const MohrCoulombStrength &s)
+  {
+    const double phi = radians(s.friction_angle);
+    return 2.0 * s.cohesion * std::cos(phi) / (1.0 + std::sin(phi));
+  }
+
+  std::string calibrate_help()
+  {
+    return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--data DIR] [--csv]\n"
+           "\n"
+           "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
+           "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
+           "Eqs. 14-15 of Yang et al. (2022):\n"
+           "  UCS = 2c cos(phi)/(1 - sin(phi)),  BTS = 2c cos(phi)/(1 + sin(phi))\n"
+           "  =>  sin(phi) = (UCS - BTS)/(UCS + BTS),  c = UCS (1 - sin(phi))/(2 cos(phi))\n"
+           "\n"
+           "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
+           "and BTS) next to the calibrated values stored there (Table 4).\n"
+           "\n"
+           "options:\n"
+           "  --group Mx     only this group\n"
+           "  --ucs MPa      a UCS of your own (with --bts)\n"
+           "  --bts MPa      a BTS of your own (with --ucs)\n"
+           "  --data DIR     data folder (default: cases/data of the source tree)\n"
+           "  --csv          print comma-separated values instead of an aligned table\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input.\n";
+  }
+
+  int calibrate_main(const std::vector<std::string> &args)
+  {
+    std::string group, data = default_data_directory();
+    double ucs = 0, bts = 0;
+    bool has_ucs = false, has_bts = false, csv = false;
+    ArgumentCursor cursor("calibrate", args);
+    while (!cursor.done())
+    {
+      const std::string a = cursor.next();
+      if (a == "--group")
+        group = cursor.value(a);
+      else if (a == "--ucs")
+        ucs = cursor.number(a), has_ucs = true;
+      else if (a == "--bts")
+        bts = cursor.number(a), has_bts = true;
+      else if (a == "--data")
+        data = cursor.value(a);
+      else if (a == "--csv")
+        csv = true;
+      else
+        throw InputError("cosim calibrate: unknown option '" + a + "'" +
+                         did_you_mean(a, {"--group", "--ucs", "--bts", "--data", "--csv", "--help"}) +
+                         "; accepted: --group, --ucs, --bts, --data, --csv");
+    }
+    if (has_ucs != has_bts)
+      throw InputError("cosim calibrate: give both --ucs and --bts (in MPa), or neither");
+
+    const char *header_format = csv ? "%s,%s,%s,%s,%s,%s,%s\n" : "%-8s %10s %10s %10s %10s %10s %10s\n";
+    const char *row_format = csv ? "%s,%.2f,%.2f,%.2f,%.2f,%s,%s\n" : "%-8s %10.2f %10.2f %10.2f %10.2f %10s %10s\n";
+    if (has_ucs)
+    {
+      if (!(bts > 0 && ucs > bts))
+        throw InputError("cosim calibrate: --ucs " + std::to_string(ucs) + " --bts " + std::to_string(bts) +
+                         ": need 0 < BTS < UCS (MPa)");
+      const auto s = calibrate_mohr_coulomb(ucs, bts);
+      std::printf(header_format, "group", "UCS_MPa", "BTS_MPa", "c_MPa", "phi_deg", "table_c", "table_phi");
+      std::printf(row_format, group.empty() ? "-" : group.c_str(), ucs, bts, s.cohesion, s.friction_angle, "-", "-");
+      return 0;
+    }
+
+    const MaterialTable table = MaterialTable::read(data);
+    if (!group.empty())
+      table.find(group);
+    std::printf(header_format, "group", "UCS_MPa", "BTS_MPa", "c_MPa", "phi_deg", "table_c", "table_phi");
+    for (const auto &g : table.groups())
+    {
+      if (!group.empty() && g.group != group)
+        continue;
+      const auto s = calibrate_mohr_coulomb(g.ucs / 1e6, g.bts / 1e6);
+      char c4[32] = "-", phi4[32] = "-";
+      if (g.calibrated_cohesion)
+      {
+        std::snprintf(c4, sizeof c4, "%.2f", *g.calibrated_cohesion / 1e6);
+        std::snprintf(phi4, sizeof phi4, "%.2f", *g.calibrated_friction_angle);
+      }
+      std::printf(row_format, g.group.c_str(), g.ucs / 1e6, g.bts / 1e6, s.cohesion, s.friction_angle, c4, phi4);
+    }
+    return 0;
+  }
+} // namespace coupling

@@ -1,0 +1,253 @@
+#include <coupling/case_file.h>
+#include <coupling/cli.h>
+#include <coupling/output_writer.h>
+#include <coupling/progress.h>
+#include <coupling/run_case.h>
+#include <coupling/run_command.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+namespace coupling
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// Keeps the history in memory, streams snapshots into results.h5, shows progress.
+    class RecordingObserver : public RunObserver
+    {
+    public:
+      RecordingObserver(ResultsFile &results, ProgressDisplay &progress)
+        : results_(results)
+        , progress_(progress)
+      {}
+
+      void progress(std::size_t step, double time, double fraction) override
+      {
+        progress_.update(step, time, fraction);
+      }
+      void history(const HistoryRow &row) override { rows.push_back(row); }
+      void snapshot(double time, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &meshes) override
+      {
+        results_.add_snapshot(time, particles, meshes);
+      }
+
+      std::vector<HistoryRow> rows;
+
+    private:
+      ResultsFile &results_;
+      ProgressDisplay &progress_;
+    };
+
+    struct RunOptions
+    {
+      std::string case_file;
+      std::string output;
+      std::vector<std::string> overrides;
+      bool force = false;
+      bool quiet = false;
+    };
+
+    RunOptions parse_options(const std::vector<std::string> &args)
+    {
+      RunOptions o;
+      ArgumentCursor cursor("run", args);
+      while (!cursor.done())
+      {
+        const std::string a = cursor.next();
+        if (a == "-o" || a == "--output")
+          o.output = cursor.value(a);
+        else if (a == "--set")
+          o.overrides.push_back(cursor.value(a));
+        else if (a == "--force")
+          o.force = true;
+        else if (a == "--quiet" || a == "-q")
+          o.quiet = true;
+        else if (!a.empty() && a[0] == '-')
+          throw InputError("cosim run: unknown option '" + a + "'" +
+                           did_you_mean(a, {"--output", "--set", "--force", "--quiet", "--help"}) +
+                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --force, --quiet");
+        else if (o.case_file.empty())
+          o.case_file = a;
+        else
+          throw InputError("cosim run: a second case file '" + a + "' (after '" + o.case_file +
+                           "'); run takes one CASE.prm");
+      }
+      if (o.case_file.empty())
+        throw InputError("cosim run: no case file; usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\"]");
+      return o;
+    }
+
+    /// Where the results go, checked before anything is run or written.
+    fs::path check_output_folder(const RunOptions &o, const std::string &case_stem)
+    {
+      const fs::path out = fs::absolute(o.output.empty() ? fs::path("results") / case_stem : fs::path(o.output))
+                             .lexically_normal();
+      const fs::path target = out.has_filename() ? out : out.parent_path();
+      std::error_code ec;
+      if (fs::exists(target, ec) && !fs::is_directory(target, ec))
+        throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
+      if (fs::exists(target, ec) && !o.force)
+        throw InputError("output folder " + target.string() +
+                         " already exists; use --force to replace it, or -o to choose another");
+      // the nearest existing ancestor must be a writable folder
+      fs::path ancestor = target.parent_path();
+      while (!ancestor.empty() && !fs::exists(ancestor, ec) && ancestor != ancestor.root_path())
+        ancestor = ancestor.parent_path();
+      if (!fs::is_directory(ancestor, ec))
+        throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                         " is not a folder; choose a writable place with -o");
+      if (access(ancestor.c_str(), W_OK | X_OK) != 0)
+        throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                         " is not writable; choose a writable place with -o");
+      return target;
+    }
+
+    /// A sibling of `target` that does not exist yet.
+    fs::path sibling(const fs::path &target, const std::string &tag)
+    {
+      fs::path candidate;
+      for (int i = 0;; ++i)
+      {
+        candidate = target.parent_path() /
+                    ("." + target.filename().string() + "." + tag + "-" + std::to_string(getpid()) +
+                     (i ? "-" + std::to_string(i) : ""));
+        if (!fs::exists(candidate))
+          return candidate;
+      }
+    }
+
+    /// Replaces `target` by `staging` (rename; the old folder is removed only after).
+    void publish(const fs::path &staging, const fs::path &target)
+    {
+      if (fs::exists(target))
+      {
+        const fs::path old = sibling(target, "old");
+        fs::rename(target, old);
+        fs::rename(staging, target);
+        fs::remove_all(old);
+      }
+      else
+        fs::rename(staging, target);
+    }
+  } // namespace
+
+  std::string run_help()
+  {
+    return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] [--quiet]\n"
+           "\n"
+           "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case stem>):\n"
+           "  summary.json         peak stress and force, modulus, Poisson's ratio, energy checks\n"
+           "  history.csv          one row per output step (time_s, displacement_mm, force_kN, ...)\n"
+           "  results.h5, .xdmf    history, particle and platen-mesh snapshots (open the .xdmf in ParaView)\n"
+           "  curve.png            stress-strain (UCS, CTCS) or stress-displacement (BTS)\n"
+           "  used_parameters.prm  every parameter as used, the rock group's values included\n"
+           "\n"
+           "options:\n"
+           "  -o, --output OUTDIR  result folder; never replaced without --force\n"
+           "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set \"SPH/Particle spacing=0.002\"\n"
+           "  --force              replace an existing OUTDIR (only once the run has succeeded)\n"
+           "  -q, --quiet          no progress display\n"
+           "\n"
+           "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, so a\n"
+           "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
+           "has in OUTDIR.failed.\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run,\n"
+           "1 other failure.\n"
+           "\n"
+           "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end),\n"
+           "SI units, [default]:\n" +
+           case_file_keys_help();
+  }
+
+  int run_main(const std::vector<std::string> &args)
+  {
+    const RunOptions options = parse_options(args);
+    const CaseFile case_file = read_case_file(options.case_file, options.overrides);
+    const fs::path target = check_output_folder(options, fs::path(options.case_file).stem().string());
+    for (const auto &w : case_file.warnings)
+      std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
+
+    // Everything checked: from here on we write, but only into the staging folder.
+    std::error_code ec;
+    fs::path first_created; // the outermost folder we create for OUTDIR's parent, removed on failure
+    for (fs::path p = target.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+      first_created = p;
+    fs::create_directories(target.parent_path(), ec);
+    const fs::path staging = sibling(target, "tmp");
+    auto clean_up = [&] {
+      fs::remove_all(staging, ec);
+      if (!first_created.empty())
+        fs::remove_all(first_created, ec);
+    };
+    if (!fs::create_directory(staging, ec))
+    {
+      clean_up();
+      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() + " (" +
+                       ec.message() + "); choose a writable place with -o");
+    }
+    try
+    {
+      write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
+      ResultsFile results((staging / "results.h5").string());
+      ProgressDisplay progress(case_file.parameters.output.progress && !options.quiet);
+      RecordingObserver observer(results, progress);
+      const auto start = std::chrono::steady_clock::now();
+      auto write_all = [&](const Summary *summary) {
+        if (summary)
+          write_text_file((staging / "summary.json").string(), summary_json(*summary));
+        write_history_csv((staging / "history.csv").string(), observer.rows);
+        results.write_history(observer.rows);
+        results.close((staging / "results.xdmf").string());
+        if (!observer.rows.empty())
+        {
+          const std::string why = plot_curve((staging / "history.csv").string(), case_file.parameters.test,
+                                             (staging / "curve.png").string());
+          if (!why.empty())
+            std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
+        }
+      };
+      try
+      {
+        Summary summary = run_case(case_file.parameters, observer);
+        progress.finish();
+        if (summary.wall_seconds <= 0)
+          summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        write_all(&summary);
+        publish(staging, target);
+        if (!options.quiet)
+          std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
+                       summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
+        return 0;
+      }
+      catch (const InstabilityError &e)
+      {
+        progress.finish();
+        write_all(nullptr);
+        write_text_file((staging / "failure.txt").string(), std::string(e.what()) + "\n");
+        fs::path failed = target;
+        failed += ".failed";
+        if (fs::exists(failed))
+        {
+          if (options.force)
+            fs::remove_all(failed);
+          else
+            failed = sibling(failed, "new");
+        }
+        fs::rename(staging, failed);
+        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(), failed.c_str());
+        return 3;
+      }
+    }
+    catch (...)
+    {
+      clean_up();
+      throw;
+    }
+  }
+} // namespace coupling
