@@ -593,7 +593,7 @@ namespace fem
   double Platen::time() const { return impl_->time_; }
 
   double Platen::reaction_force() const { return impl_->reaction; }
-  double Platen::compressive_force() const { return -contact_normal_z() * impl_->reaction; }
+  double Platen::compressive_force() const { return contact_normal_z() * impl_->reaction; }
 
   double Platen::loaded_face_displacement() const
   {
