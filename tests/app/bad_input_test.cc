@@ -1,0 +1,385 @@
+// Bad input to the built `cosim`: exit status 2, exactly one line on stderr that names the
+// culprit (file:line, key or option) and what is accepted, and nothing written (design.md,
+// issues 2 and 9). Validation happens before run_case, so none of this needs the drivers.
+#include "subprocess.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sys/stat.h>
+
+using namespace cosim_test;
+
+namespace
+{
+  const std::string ucs_case = source("cases/ucs/ucs.prm");
+
+  /// Runs cosim and checks the bad-input contract; `expected` are fragments of the message.
+  void expect_bad_input(const Sandbox &box, const std::vector<std::string> &args,
+                        const std::vector<std::string> &expected)
+  {
+    const auto before = listing(box.dir());
+    const Result r = run_cosim(box, args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line only:\n" << r.err;
+    EXPECT_EQ(r.err.back(), '\n');
+    for (const auto &e : expected)
+      EXPECT_NE(r.err.find(e), std::string::npos) << "message lacks '" << e << "': " << r.err;
+    EXPECT_EQ(listing(box.dir()), before) << "bad input must write nothing";
+  }
+
+  std::string data_copy(const Sandbox &box, const std::string &folder)
+  {
+    const fs::path dir = box.dir() / folder;
+    fs::create_directories(dir);
+    for (const auto *f : {"table3_fitted_parameters.csv", "table4_calibrated.csv"})
+      fs::copy_file(source(std::string("cases/data/") + f), dir / f);
+    return dir.string();
+  }
+
+  void replace_in_file(const fs::path &file, const std::string &from, const std::string &to)
+  {
+    std::string text = read_file(file);
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, from.size(), to);
+    std::ofstream(file) << text;
+  }
+} // namespace
+
+TEST(BadInput, UnknownSectionInCaseFile)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "subsection Test\n  set Type = UCS\nend\n# comment\nsubsection Sph\nend\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:5", "unknown section 'Sph'", "did you mean 'SPH'", "Test, Rock"});
+}
+
+TEST(BadInput, UnknownKeyInCaseFileSuggestsNearest)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "subsection SPH\n  set Particle spaceing = 0.002\nend\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:2", "unknown key 'Particle spaceing'", "did you mean 'Particle spacing'"});
+}
+
+TEST(BadInput, WrongTypeInCaseFile)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "subsection SPH\n  set CSLH = one point two\nend\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:2", "SPH/CSLH", "not a finite number"});
+}
+
+TEST(BadInput, UnclosedSubsection)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "subsection Rock\n  set Group = M2\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:1", "'Rock' is not closed"});
+}
+
+TEST(BadInput, SetOutsideSubsection)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "set FORM = 8\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:1", "outside a subsection", "SPH"});
+}
+
+TEST(BadInput, UnreadableLine)
+{
+  Sandbox box;
+  const auto prm = box.write("c.prm", "subsection SPH\n  FORM 8\nend\n");
+  expect_bad_input(box, {"run", prm.string()}, {"c.prm:2", "expected 'subsection Name'"});
+}
+
+TEST(BadInput, NegativeSpacing)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/Particle spacing=-0.001"}, {"SPH/Particle spacing", "must be > 0"});
+}
+
+TEST(BadInput, SpecimenSizedSpacing)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/Particle spacing=0.05"},
+                   {"SPH/Particle spacing", "too coarse", "at most 1/10"});
+}
+
+TEST(BadInput, SpacingTooCoarseForSmallSpecimenNamesTheFileLine)
+{
+  Sandbox box;
+  const auto prm = box.write("small.prm", "subsection Test\n  set Diameter = 0.01\n  set Length = 0.02\nend\n"
+                                          "subsection SPH\n  set Particle spacing = 0.002\nend\n");
+  expect_bad_input(box, {"run", prm.string()}, {"small.prm:6", "too coarse", "1 mm"});
+}
+
+TEST(BadInput, PoissonsRatioAtOneHalf)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Poissons ratio=0.5"}, {"Rock/Poissons ratio", "[0, 0.5)"});
+}
+
+TEST(BadInput, FrictionAngleOutOfRange)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Friction angle=90"}, {"Rock/Friction angle", "(0, 90)"});
+}
+
+TEST(BadInput, NonPositiveCohesion)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Cohesion=0"}, {"Rock/Cohesion", "> 0"});
+}
+
+TEST(BadInput, FormFive)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/FORM=5"}, {"SPH/FORM", "'5'", "one of 0, 1, 7, 8"});
+}
+
+TEST(BadInput, ZeroTssfac)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/TSSFAC=0"}, {"SPH/TSSFAC", "(0, 10]"});
+}
+
+TEST(BadInput, UnknownRockGroup)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Group=M11"}, {"Rock/Group", "M11", "known groups: M1, M2"});
+}
+
+TEST(BadInput, UnknownRockModel)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Model=drucker-prager"},
+                   {"Rock/Model", "drucker-prager", "mohr-coulomb"});
+}
+
+TEST(BadInput, MeasuredStrengthOfAGroupWithout)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Strength parameters=measured"},
+                   {"Rock/Strength parameters", "group M1", "M8, M9, M10"});
+}
+
+TEST(BadInput, ConfiningPressureOnUcs)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Test/Confining pressure=1e7"}, {"Test/Confining pressure", "CTCS"});
+}
+
+TEST(BadInput, DilationAboveFriction)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Dilation angle=70"}, {"Rock/Dilation angle", "friction angle"});
+}
+
+TEST(BadInput, NanValue)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/CSLH=nan"}, {"SPH/CSLH", "'nan'", "finite number"});
+}
+
+TEST(BadInput, WrongBool)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Output/Progress=maybe"}, {"Output/Progress", "true or false"});
+}
+
+TEST(BadInput, MalformedSet)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/FORM 8"}, {"--set \"SPH/FORM 8\"", "Section/Key=value"});
+}
+
+TEST(BadInput, SetUnknownSection)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Platen/Model=rigid"}, {"unknown section 'Platen'", "Platens/Model"});
+}
+
+TEST(BadInput, SetUnknownKeySuggestsNearest)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Loading/Strain-rate=0.01"},
+                   {"unknown key 'Strain-rate'", "did you mean 'Strain rate'"});
+}
+
+TEST(BadInput, SetWithoutValue)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set"}, {"--set needs a value"});
+}
+
+TEST(BadInput, MissingCaseFile)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", "no_such_case.prm"}, {"no_such_case.prm", "no such file"});
+}
+
+TEST(BadInput, CaseFileIsAFolder)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", source("cases/ucs")}, {"is a folder"});
+}
+
+TEST(BadInput, NoCaseFile)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run"}, {"no case file", "usage"});
+}
+
+TEST(BadInput, UnknownOption)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--forse"}, {"unknown option '--forse'", "did you mean '--force'"});
+}
+
+TEST(BadInput, UnknownSubcommand)
+{
+  Sandbox box;
+  expect_bad_input(box, {"rnu", ucs_case}, {"unknown subcommand 'rnu'", "did you mean 'run'", "calibrate"});
+}
+
+TEST(BadInput, UnwritableOutputFolder)
+{
+  Sandbox box;
+  // a regular file where a folder should be: refused even for root, unlike permission bits
+  box.write("blocker", "not a folder\n");
+  expect_bad_input(box, {"run", ucs_case, "-o", (box.dir() / "blocker" / "out").string()}, {"blocker", "not a folder"});
+}
+
+TEST(BadInput, ReadOnlyOutputFolder)
+{
+  if (geteuid() == 0)
+    GTEST_SKIP() << "root ignores permission bits; UnwritableOutputFolder covers this path";
+  Sandbox box;
+  fs::create_directories(box.dir() / "ro");
+  fs::permissions(box.dir() / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+  expect_bad_input(box, {"run", ucs_case, "-o", (box.dir() / "ro" / "out").string()}, {"not writable"});
+}
+
+TEST(BadInput, ExistingOutputWithoutForce)
+{
+  Sandbox box;
+  box.write("results/ucs/summary.json", "{}\n");
+  expect_bad_input(box, {"run", ucs_case}, {"results/ucs", "already exists", "--force"});
+  EXPECT_EQ(read_file(box.dir() / "results/ucs/summary.json"), "{}\n");
+}
+
+TEST(BadInput, MalformedCsvRowNamesTheLine)
+{
+  Sandbox box;
+  const std::string data = data_copy(box, "data");
+  replace_in_file(fs::path(data) / "table3_fitted_parameters.csv", "M3,1,180,86.84,0.26,,,231.38,12.00",
+                  "M3,1,180,86.84,0.26,,231.38,12.00");
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
+                   {"table3_fitted_parameters.csv:5", "8 cells", "9 columns"});
+}
+
+TEST(BadInput, NanInCsvNamesTheLine)
+{
+  Sandbox box;
+  const std::string data = data_copy(box, "data");
+  replace_in_file(fs::path(data) / "table4_calibrated.csv", "M2,30.75", "M2,nan");
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
+                   {"table4_calibrated.csv:4", "c_MPa", "'nan'", "finite number"});
+}
+
+TEST(BadInput, OutOfRangeCsvValueNamesTheLine)
+{
+  Sandbox box;
+  const std::string data = data_copy(box, "data");
+  replace_in_file(fs::path(data) / "table3_fitted_parameters.csv", "M1,0,0,97.07,0.28", "M1,0,0,97.07,0.58");
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
+                   {"table3_fitted_parameters.csv:3", "nu = 0.58", "[0, 0.5)"});
+}
+
+TEST(BadInput, MissingDataFolder)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=/nonexistent/data"},
+                   {"/nonexistent/data", "no such data folder"});
+}
+
+TEST(BadInput, CalibrateBtsAboveUcs)
+{
+  Sandbox box;
+  expect_bad_input(box, {"calibrate", "--ucs", "10", "--bts", "20"}, {"0 < BTS < UCS"});
+}
+
+TEST(BadInput, CalibrateUcsWithoutBts)
+{
+  Sandbox box;
+  expect_bad_input(box, {"calibrate", "--ucs", "200"}, {"both --ucs and --bts"});
+}
+
+TEST(BadInput, CalibrateUnknownGroup)
+{
+  Sandbox box;
+  expect_bad_input(box, {"calibrate", "--group", "M0"}, {"unknown rock group 'M0'", "M1"});
+}
+
+TEST(BadInput, CalibrateNotANumber)
+{
+  Sandbox box;
+  expect_bad_input(box, {"calibrate", "--ucs", "abc", "--bts", "10"}, {"--ucs 'abc'", "finite number"});
+}
+
+TEST(Help, EverySubcommandHasHelp)
+{
+  Sandbox box;
+  const Result top = run_cosim(box, {"--help"});
+  EXPECT_EQ(top.status, 0);
+  for (const auto *command : {"run", "calibrate"})
+  {
+    EXPECT_NE(top.out.find(command), std::string::npos) << command;
+    const Result r = run_cosim(box, {command, "--help"});
+    EXPECT_EQ(r.status, 0) << command;
+    EXPECT_NE(r.out.find(std::string("usage: cosim ") + command), std::string::npos) << r.out;
+  }
+  EXPECT_TRUE(listing(box.dir()).empty());
+}
+
+TEST(Help, RunHelpListsEveryKeyOfTheContract)
+{
+  Sandbox box;
+  const Result r = run_cosim(box, {"run", "--help"});
+  for (const auto *key : {"Rock/Group", "Rock/Model", "SPH/Particle spacing", "SPH/FORM", "SPH/CSLH", "SPH/TSSFAC",
+                          "SPH/Kernel", "Platens/Model", "Platens/Friction coefficient", "Loading/Strain rate",
+                          "Test/Confining pressure"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+}
+
+TEST(Calibrate, CommandPrintsTable4)
+{
+  Sandbox box;
+  const Result r = run_cosim(box, {"calibrate", "--csv"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // M8: Table 3 UCS 255.90, BTS 12.99 -> Table 4 c 28.83, phi 64.61, twice (computed and stored)
+  EXPECT_NE(r.out.find("M8,255.90,12.99,28.83,64.61,28.83,64.61"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 11);
+}
+
+// The output files of a real run. Disabled until the coupled drivers (run_case) land; then
+// remove DISABLED_ and it checks the default UCS case end to end (coarse spacing to stay quick).
+TEST(AppRun, DISABLED_DefaultUcsWritesEveryOutput)
+{
+  Sandbox box;
+  const Result r = run_cosim(box, {"run", ucs_case, "--quiet", "--set", "SPH/Particle spacing=0.005"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const fs::path out = box.dir() / "results" / "ucs";
+  for (const auto *f : {"used_parameters.prm", "summary.json", "history.csv", "results.h5", "results.xdmf", "curve.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const std::string summary = read_file(out / "summary.json");
+  for (const auto *k : {"\"test\"", "\"n_particles\"", "\"peak_stress_MPa\"", "\"youngs_modulus_GPa\"", "\"quasi_static\""})
+    EXPECT_NE(summary.find(k), std::string::npos) << k;
+  // exactly the result folder: no staging folders left behind
+  EXPECT_EQ(listing(box.dir() / "results").count(".ucs.tmp"), 0u);
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto &e : fs::directory_iterator(box.dir() / "results"))
+    ++entries;
+  EXPECT_EQ(entries, 1u);
+  // a second run without --force is refused and leaves the first intact; with --force replaces it
+  EXPECT_EQ(run_cosim(box, {"run", ucs_case, "--quiet", "--set", "SPH/Particle spacing=0.005"}).status, 2);
+  EXPECT_EQ(run_cosim(box, {"run", ucs_case, "--quiet", "--force", "--set", "SPH/Particle spacing=0.005"}).status, 0);
+}
