@@ -22,7 +22,7 @@ namespace coupling
       if (!std::isfinite(v))
         return "null";
       char buffer[64];
-      std::snprintf(buffer, sizeof buffer, fmt, v);
+      std::snprintf(buffer, sizeof buffer, fmt, v + 0.0); // + 0.0: no "-0"
       return buffer;
     }
 
