@@ -177,6 +177,7 @@ namespace fem
     double reaction  = 0.0;
     double work      = 0.0;
     double dissipated = 0.0;
+    double strain_energy_mid = 0.0; ///< [J], see step()
 
     mutable double lambda_cache = -1.0;
   };
@@ -499,6 +500,9 @@ namespace fem
         reaction = r;
         work += dw;
         dissipated += dd;
+        // strain energy at t + dt/2, where the kinetic energy lives: 1/2 u(t+dt) . K u(t); with
+        // it, kinetic + strain + dissipated - work is what central differences conserve
+        strain_energy_mid = 0.5 * (u * Ku);
         K.vmult(Ku, u);
       }
     f_ext   = 0.0;
@@ -621,7 +625,7 @@ namespace fem
 
   double Platen::strain_energy() const
   {
-    return is_rigid() ? 0.0 : 0.5 * (impl_->u * impl_->Ku);
+    return is_rigid() ? 0.0 : impl_->strain_energy_mid;
   }
 
   double Platen::external_work() const { return impl_->work; }
@@ -705,7 +709,10 @@ namespace fem
     im.vertex_field_to_vector(displacement, im.u);
     im.vertex_field_to_vector(velocity, im.v);
     if (!is_rigid())
-      im.K.vmult(im.Ku, im.u);
+      {
+        im.K.vmult(im.Ku, im.u);
+        im.strain_energy_mid = 0.5 * (im.u * im.Ku);
+      }
     else
       im.rigid_vz = velocity.empty() ? 0.0 : velocity[2];
     im.du_prev = 0.0;

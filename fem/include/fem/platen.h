@@ -10,7 +10,9 @@
 ///   reads negative; compressive_force() gives it compression-positive for either side).
 /// - Time levels: after step(t, dt) the platen holds u(t+dt) and v(t+dt/2). contact_positions()
 ///   are x0 + u(t+dt); contact_velocities() are v(t+dt/2) (the usual half-step lag of central
-///   differences). Energies: kinetic from v(t+dt/2), strain from u(t+dt).
+///   differences). Energies live at t+dt/2: kinetic 1/2 v M v with v(t+dt/2), strain
+///   1/2 u(t+dt) . K u(t); kinetic + strain + damping_dissipation - external_work is then the
+///   quantity central differences conserve (to round-off at constant dt).
 ///
 /// Lifecycle per coupled time step, at time t with step dt <= stable_time_step():
 ///   1. read contact_positions() / contact_velocities() (and contact_faces(), fixed),
@@ -105,7 +107,8 @@ namespace fem
     /// Mean z-displacement of the contact face [m].
     double contact_face_displacement() const;
     double kinetic_energy() const;     ///< 1/2 v M v [J]
-    double strain_energy() const;      ///< 1/2 u K u [J] (0 for rigid)
+    /// 1/2 u(t+dt) . K u(t) [J], the strain energy at the half step (0 for rigid).
+    double strain_energy() const;
     /// Work of contact forces and of the prescribed-motion reaction [J]: sum over steps of
     /// f(t_n) . (u(t_n+1) - u(t_n-1)) / 2, the increment that central differences conserve.
     double external_work() const;
