@@ -39,11 +39,11 @@ namespace fem
     void check_positive(const double value, const char *name)
     {
       if (!(value > 0.0) || !std::isfinite(value))
-        {
-          std::ostringstream msg;
-          msg << "fem::Platen: " << name << " must be a positive finite number, got " << value;
-          throw std::invalid_argument(msg.str());
-        }
+      {
+        std::ostringstream msg;
+        msg << "fem::Platen: " << name << " must be a positive finite number, got " << value;
+        throw std::invalid_argument(msg.str());
+      }
     }
 
     void validate(const PlatenGeometry &g, const Parameters &p)
@@ -51,26 +51,26 @@ namespace fem
       if (g.shape == PlatenShape::cylinder)
         check_positive(g.diameter, "PlatenGeometry::diameter [m]");
       else
-        {
-          check_positive(g.size_x, "PlatenGeometry::size_x [m]");
-          check_positive(g.size_y, "PlatenGeometry::size_y [m]");
-        }
+      {
+        check_positive(g.size_x, "PlatenGeometry::size_x [m]");
+        check_positive(g.size_y, "PlatenGeometry::size_y [m]");
+      }
       check_positive(g.thickness, "PlatenGeometry::thickness [m]");
       check_positive(p.element_size, "Parameters::element_size [m]");
       check_positive(p.density, "Parameters::density [kg/m^3]");
       check_positive(p.time_step_safety, "Parameters::time_step_safety [-]");
       if (p.model == PlatenModel::elastic)
-        {
-          check_positive(p.youngs_modulus, "Parameters::youngs_modulus [Pa]");
-          if (!(p.poissons_ratio > -1.0 && p.poissons_ratio < 0.5))
-            throw std::invalid_argument(
-              "fem::Platen: Parameters::poissons_ratio must lie in (-1, 0.5), got " +
-              std::to_string(p.poissons_ratio));
-          if (!(p.stiffness_damping >= 0.0))
-            throw std::invalid_argument(
-              "fem::Platen: Parameters::stiffness_damping [s] must be >= 0, got " +
-              std::to_string(p.stiffness_damping));
-        }
+      {
+        check_positive(p.youngs_modulus, "Parameters::youngs_modulus [Pa]");
+        if (!(p.poissons_ratio > -1.0 && p.poissons_ratio < 0.5))
+          throw std::invalid_argument(
+            "fem::Platen: Parameters::poissons_ratio must lie in (-1, 0.5), got " +
+            std::to_string(p.poissons_ratio));
+        if (!(p.stiffness_damping >= 0.0))
+          throw std::invalid_argument(
+            "fem::Platen: Parameters::stiffness_damping [s] must be >= 0, got " +
+            std::to_string(p.stiffness_damping));
+      }
     }
 
     unsigned int n_cells_for(const double length, const double h)
@@ -89,7 +89,7 @@ namespace fem
       while (0.75 * radius / std::pow(2.0, n_refine) > 1.2 * h && n_refine < 8)
         ++n_refine;
       const double axial_after_refine = g.thickness / std::pow(2.0, n_refine);
-      const unsigned int x_sub = n_cells_for(axial_after_refine, h);
+      const unsigned int x_sub        = n_cells_for(axial_after_refine, h);
 
       GridGenerator::subdivided_cylinder(tria, x_sub, radius, 0.5 * g.thickness);
       // The generator's axis is x; rotate it onto z. Rotation moves vertices only: the
@@ -125,14 +125,11 @@ namespace fem
     /// Box centred on the z axis, z in [0, thickness]. Colorized ids 0..5 (x-, x+, y-, y+, z-, z+).
     void make_box(Triangulation<3> &tria, const PlatenGeometry &g, const double h)
     {
-      const std::vector<unsigned int> reps = {n_cells_for(g.size_x, h),
-                                              n_cells_for(g.size_y, h),
+      const std::vector<unsigned int> reps = {n_cells_for(g.size_x, h), n_cells_for(g.size_y, h),
                                               n_cells_for(g.thickness, h)};
-      GridGenerator::subdivided_hyper_rectangle(tria,
-                                                reps,
-                                                Point<3>(-0.5 * g.size_x, -0.5 * g.size_y, 0.0),
-                                                Point<3>(0.5 * g.size_x, 0.5 * g.size_y, g.thickness),
-                                                true);
+      GridGenerator::subdivided_hyper_rectangle(
+        tria, reps, Point<3>(-0.5 * g.size_x, -0.5 * g.size_y, 0.0),
+        Point<3>(0.5 * g.size_x, 0.5 * g.size_y, g.thickness), true);
     }
   } // namespace
 
@@ -141,15 +138,15 @@ namespace fem
   public:
     Impl(const PlatenGeometry &geometry, const Parameters &parameters);
 
-    void   step(double t, double dt);
+    void step(double t, double dt);
     double lambda_max() const;
-    void   vertex_field_to_vector(const std::vector<double> &field, Vector<double> &out) const;
+    void vertex_field_to_vector(const std::vector<double> &field, Vector<double> &out) const;
 
     PlatenGeometry geometry;
-    Parameters     prm;
+    Parameters prm;
 
     Triangulation<3> tria;
-    FE_Q<3>          fe{1};
+    FE_Q<3> fe{1};
     std::vector<unsigned int> vertex_of_tria_vertex; ///< tria vertex -> compact vertex
     std::vector<unsigned int> cell_vertices;         ///< 8 compact vertices per cell, deal.II order
     std::size_t n_vertices = 0;
@@ -159,32 +156,32 @@ namespace fem
     double volume = 0.0;        ///< [m^3]
     double mass   = 0.0;        ///< [kg]
 
-    SparsityPattern      sparsity;
+    SparsityPattern sparsity;
     SparseMatrix<double> K;
 
     std::vector<unsigned int> contact_nodes; ///< compact vertices on the contact face
     std::vector<unsigned int> contact_faces; ///< 4 contact-node indices per quad
-    std::vector<double>       contact_area;  ///< [m^2]
+    std::vector<double> contact_area;        ///< [m^2]
     std::vector<unsigned int> loaded_nodes;  ///< compact vertices on the loaded face
-    std::vector<bool>         prescribed;    ///< per dof
+    std::vector<bool> prescribed;            ///< per dof
 
     Vector<double> u, v, Ku, Kv, f_ext, du_prev;
 
     std::function<double(double)> velocity_z;
-    double time_     = 0.0;
-    double dt_prev   = 0.0;
-    double rigid_vz  = 0.0; ///< rigid body z velocity at the last half step [m/s]
-    double reaction  = 0.0;
-    double work      = 0.0;
-    double dissipated = 0.0;
+    double time_             = 0.0;
+    double dt_prev           = 0.0;
+    double rigid_vz          = 0.0; ///< rigid body z velocity at the last half step [m/s]
+    double reaction          = 0.0;
+    double work              = 0.0;
+    double dissipated        = 0.0;
     double strain_energy_mid = 0.0; ///< [J], see step()
 
     mutable double lambda_cache = -1.0;
   };
 
   Platen::Impl::Impl(const PlatenGeometry &g, const Parameters &p)
-    : geometry(g)
-    , prm(p)
+      : geometry(g)
+      , prm(p)
   {
     validate(g, p);
     if (g.shape == PlatenShape::cylinder)
@@ -194,24 +191,24 @@ namespace fem
 
     // Place the body on its side of the contact plane and mark the faces. Before the shift the
     // body occupies z in [0, thickness].
-    const bool   above       = (g.side == PlatenSide::above);
-    const double contact_z0  = above ? 0.0 : g.thickness; // contact plane before the shift
-    const double tol         = 1e-6 * g.thickness;
+    const bool above        = (g.side == PlatenSide::above);
+    const double contact_z0 = above ? 0.0 : g.thickness; // contact plane before the shift
+    const double tol        = 1e-6 * g.thickness;
     for (const auto &cell : tria.active_cell_iterators())
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
-          {
-            const double zc = face->center()[2];
-            bool flat_end = true;
-            for (unsigned int k = 0; k < 4; ++k)
-              flat_end = flat_end && std::abs(face->vertex(k)[2] - zc) < tol;
-            if (flat_end && std::abs(zc - contact_z0) < tol)
-              face->set_boundary_id(boundary_id::contact);
-            else if (flat_end && std::abs(zc - (g.thickness - contact_z0)) < tol)
-              face->set_boundary_id(boundary_id::loaded);
-            else
-              face->set_boundary_id(boundary_id::free_faces);
-          }
+        {
+          const double zc = face->center()[2];
+          bool flat_end   = true;
+          for (unsigned int k = 0; k < 4; ++k)
+            flat_end = flat_end && std::abs(face->vertex(k)[2] - zc) < tol;
+          if (flat_end && std::abs(zc - contact_z0) < tol)
+            face->set_boundary_id(boundary_id::contact);
+          else if (flat_end && std::abs(zc - (g.thickness - contact_z0)) < tol)
+            face->set_boundary_id(boundary_id::loaded);
+          else
+            face->set_boundary_id(boundary_id::free_faces);
+        }
     Tensor<1, 3> shift;
     shift[0] = g.center_x;
     shift[1] = g.center_y;
@@ -223,147 +220,146 @@ namespace fem
     vertex_of_tria_vertex.assign(tria.n_vertices(), numbers::invalid_unsigned_int);
     for (unsigned int i = 0; i < tria.n_vertices(); ++i)
       if (used[i])
-        {
-          vertex_of_tria_vertex[i] = n_vertices++;
-          for (unsigned int d = 0; d < 3; ++d)
-            x0.push_back(tria.get_vertices()[i][d]);
-        }
+      {
+        vertex_of_tria_vertex[i] = n_vertices++;
+        for (unsigned int d = 0; d < 3; ++d)
+          x0.push_back(tria.get_vertices()[i][d]);
+      }
     for (const auto &cell : tria.active_cell_iterators())
       for (unsigned int k = 0; k < 8; ++k)
         cell_vertices.push_back(vertex_of_tria_vertex[cell->vertex_index(k)]);
 
-    const std::size_t n_dofs = 3 * n_vertices;
+    const std::size_t n_dofs   = 3 * n_vertices;
     const unsigned int n_cells = tria.n_active_cells();
 
     // Lumped mass: row sums of the consistent mass (Gauss 2x2x2 is exact for the trilinear
     // Jacobian), so the sum of the nodal masses is exactly rho times the mesh volume.
     m_node.assign(n_vertices, 0.0);
     {
-      QGauss<3>   quadrature(2);
+      QGauss<3> quadrature(2);
       FEValues<3> fe_values(fe, quadrature, update_values | update_JxW_values);
       unsigned int c = 0;
       for (const auto &cell : tria.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          fe_values.reinit(cell);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              volume += fe_values.JxW(q);
-              for (unsigned int i = 0; i < 8; ++i)
-                m_node[cell_vertices[8 * c + i]] +=
-                  p.density * fe_values.shape_value(i, q) * fe_values.JxW(q);
-            }
-          ++c;
+          volume += fe_values.JxW(q);
+          for (unsigned int i = 0; i < 8; ++i)
+            m_node[cell_vertices[8 * c + i]] +=
+              p.density * fe_values.shape_value(i, q) * fe_values.JxW(q);
         }
+        ++c;
+      }
       for (const double m : m_node)
         mass += m;
     }
 
     // Stiffness (elastic only), node-major dofs.
     if (p.model == PlatenModel::elastic)
+    {
+      DynamicSparsityPattern dsp(n_dofs, n_dofs);
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int i = 0; i < 8; ++i)
+          for (unsigned int j = 0; j < 8; ++j)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                dsp.add(3 * cell_vertices[8 * c + i] + a, 3 * cell_vertices[8 * c + j] + b);
+      sparsity.copy_from(dsp);
+      K.reinit(sparsity);
+
+      const double E      = p.youngs_modulus;
+      const double nu     = p.poissons_ratio;
+      const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+      const double mu     = E / (2 * (1 + nu));
+
+      QGauss<3> quadrature(2);
+      FEValues<3> fe_values(fe, quadrature, update_gradients | update_JxW_values);
+      FullMatrix<double> ke(24, 24);
+      std::vector<types::global_dof_index> dofs(24);
+      unsigned int c = 0;
+      for (const auto &cell : tria.active_cell_iterators())
       {
-        DynamicSparsityPattern dsp(n_dofs, n_dofs);
-        for (unsigned int c = 0; c < n_cells; ++c)
+        fe_values.reinit(cell);
+        ke = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
           for (unsigned int i = 0; i < 8; ++i)
+          {
+            const Tensor<1, 3> gi = fe_values.shape_grad(i, q);
             for (unsigned int j = 0; j < 8; ++j)
+            {
+              const Tensor<1, 3> gj = fe_values.shape_grad(j, q);
+              const double dot      = gi * gj;
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int b = 0; b < 3; ++b)
-                  dsp.add(3 * cell_vertices[8 * c + i] + a, 3 * cell_vertices[8 * c + j] + b);
-        sparsity.copy_from(dsp);
-        K.reinit(sparsity);
-
-        const double E      = p.youngs_modulus;
-        const double nu     = p.poissons_ratio;
-        const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
-        const double mu     = E / (2 * (1 + nu));
-
-        QGauss<3>   quadrature(2);
-        FEValues<3> fe_values(fe, quadrature, update_gradients | update_JxW_values);
-        FullMatrix<double> ke(24, 24);
-        std::vector<types::global_dof_index> dofs(24);
-        unsigned int c = 0;
-        for (const auto &cell : tria.active_cell_iterators())
-          {
-            fe_values.reinit(cell);
-            ke = 0;
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              for (unsigned int i = 0; i < 8; ++i)
-                {
-                  const Tensor<1, 3> gi = fe_values.shape_grad(i, q);
-                  for (unsigned int j = 0; j < 8; ++j)
-                    {
-                      const Tensor<1, 3> gj  = fe_values.shape_grad(j, q);
-                      const double       dot = gi * gj;
-                      for (unsigned int a = 0; a < 3; ++a)
-                        for (unsigned int b = 0; b < 3; ++b)
-                          ke(3 * i + a, 3 * j + b) +=
-                            (lambda * gi[a] * gj[b] + mu * gi[b] * gj[a] +
-                             (a == b ? mu * dot : 0.0)) *
-                            fe_values.JxW(q);
-                    }
-                }
-            for (unsigned int i = 0; i < 8; ++i)
-              for (unsigned int a = 0; a < 3; ++a)
-                dofs[3 * i + a] = 3 * cell_vertices[8 * c + i] + a;
-            K.add(dofs, ke);
-            ++c;
+                  ke(3 * i + a, 3 * j + b) +=
+                    (lambda * gi[a] * gj[b] + mu * gi[b] * gj[a] + (a == b ? mu * dot : 0.0)) *
+                    fe_values.JxW(q);
+            }
           }
+        for (unsigned int i = 0; i < 8; ++i)
+          for (unsigned int a = 0; a < 3; ++a)
+            dofs[3 * i + a] = 3 * cell_vertices[8 * c + i] + a;
+        K.add(dofs, ke);
+        ++c;
       }
+    }
 
     // Contact face, loaded face, prescribed dofs.
     std::vector<unsigned int> contact_index(n_vertices, numbers::invalid_unsigned_int);
-    std::vector<bool>         on_loaded(n_vertices, false);
+    std::vector<bool> on_loaded(n_vertices, false);
     const double n_out = above ? -1.0 : 1.0;
-    QGauss<2>       face_quadrature(2);
+    QGauss<2> face_quadrature(2);
     FEFaceValues<3> fe_face(fe, face_quadrature, update_values | update_JxW_values);
     for (const auto &cell : tria.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
-        {
-          const auto face = cell->face(f);
-          if (!face->at_boundary())
-            continue;
-          if (face->boundary_id() == boundary_id::loaded)
-            for (unsigned int k = 0; k < 4; ++k)
-              on_loaded[vertex_of_tria_vertex[face->vertex_index(k)]] = true;
-          if (face->boundary_id() != boundary_id::contact)
-            continue;
-          unsigned int quad[4];
-          const unsigned int cyclic[4] = {0, 1, 3, 2}; // lexicographic face vertices -> cyclic
+      {
+        const auto face = cell->face(f);
+        if (!face->at_boundary())
+          continue;
+        if (face->boundary_id() == boundary_id::loaded)
           for (unsigned int k = 0; k < 4; ++k)
-            {
-              const unsigned int vtx = vertex_of_tria_vertex[face->vertex_index(cyclic[k])];
-              if (contact_index[vtx] == numbers::invalid_unsigned_int)
-                {
-                  contact_index[vtx] = contact_nodes.size();
-                  contact_nodes.push_back(vtx);
-                  contact_area.push_back(0.0);
-                }
-              quad[k] = contact_index[vtx];
-            }
-          const Point<3> p0 = face->vertex(cyclic[0]), p1 = face->vertex(cyclic[1]),
-                         p3 = face->vertex(cyclic[3]);
-          const Tensor<1, 3> normal = cross_product_3d(p1 - p0, p3 - p0);
-          if (normal[2] * n_out < 0)
-            std::swap(quad[1], quad[3]);
-          contact_faces.insert(contact_faces.end(), quad, quad + 4);
-
-          fe_face.reinit(cell, f);
-          for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-            for (unsigned int i = 0; i < 8; ++i)
-              {
-                const double w = fe_face.shape_value(i, q) * fe_face.JxW(q);
-                if (w != 0.0)
-                  contact_area[contact_index[vertex_of_tria_vertex[cell->vertex_index(i)]]] += w;
-              }
+            on_loaded[vertex_of_tria_vertex[face->vertex_index(k)]] = true;
+        if (face->boundary_id() != boundary_id::contact)
+          continue;
+        unsigned int quad[4];
+        const unsigned int cyclic[4] = {0, 1, 3, 2}; // lexicographic face vertices -> cyclic
+        for (unsigned int k = 0; k < 4; ++k)
+        {
+          const unsigned int vtx = vertex_of_tria_vertex[face->vertex_index(cyclic[k])];
+          if (contact_index[vtx] == numbers::invalid_unsigned_int)
+          {
+            contact_index[vtx] = contact_nodes.size();
+            contact_nodes.push_back(vtx);
+            contact_area.push_back(0.0);
+          }
+          quad[k] = contact_index[vtx];
         }
+        const Point<3> p0 = face->vertex(cyclic[0]), p1 = face->vertex(cyclic[1]),
+                       p3         = face->vertex(cyclic[3]);
+        const Tensor<1, 3> normal = cross_product_3d(p1 - p0, p3 - p0);
+        if (normal[2] * n_out < 0)
+          std::swap(quad[1], quad[3]);
+        contact_faces.insert(contact_faces.end(), quad, quad + 4);
+
+        fe_face.reinit(cell, f);
+        for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+          for (unsigned int i = 0; i < 8; ++i)
+          {
+            const double w = fe_face.shape_value(i, q) * fe_face.JxW(q);
+            if (w != 0.0)
+              contact_area[contact_index[vertex_of_tria_vertex[cell->vertex_index(i)]]] += w;
+          }
+      }
     prescribed.assign(n_dofs, false);
     for (unsigned int n = 0; n < n_vertices; ++n)
       if (on_loaded[n])
-        {
-          loaded_nodes.push_back(n);
-          prescribed[3 * n + 2] = true;
-          if (p.loaded_face_lateral == LoadedFaceLateral::fixed)
-            prescribed[3 * n] = prescribed[3 * n + 1] = true;
-        }
+      {
+        loaded_nodes.push_back(n);
+        prescribed[3 * n + 2] = true;
+        if (p.loaded_face_lateral == LoadedFaceLateral::fixed)
+          prescribed[3 * n] = prescribed[3 * n + 1] = true;
+      }
     if (contact_nodes.empty() || loaded_nodes.empty())
       throw std::logic_error("fem::Platen: the mesh has no contact or no loaded face");
 
@@ -376,12 +372,12 @@ namespace fem
   }
 
   void Platen::Impl::vertex_field_to_vector(const std::vector<double> &field,
-                                            Vector<double>            &out) const
+                                            Vector<double> &out) const
   {
     if (field.size() != 3 * n_vertices)
-      throw std::invalid_argument("fem::Platen: a vertex field needs 3 * n_nodes() = " +
-                                  std::to_string(3 * n_vertices) + " values, got " +
-                                  std::to_string(field.size()));
+      throw std::invalid_argument(
+        "fem::Platen: a vertex field needs 3 * n_nodes() = " + std::to_string(3 * n_vertices) +
+        " values, got " + std::to_string(field.size()));
     out.reinit(field.size());
     std::copy(field.begin(), field.end(), out.begin());
   }
@@ -395,10 +391,10 @@ namespace fem
     // Power iteration on the symmetric A = M^-1/2 K M^-1/2 (same spectrum as M^-1 K), all dofs
     // free: the constrained problem's lambda_max is not larger (interlacing), so this is safe.
     const std::size_t n = K.m();
-    Vector<double>    inv_sqrt_m(n), y(n), z(n), w(n);
+    Vector<double> inv_sqrt_m(n), y(n), z(n), w(n);
     for (std::size_t i = 0; i < n; ++i)
       inv_sqrt_m[i] = 1.0 / std::sqrt(m_node[i / 3]);
-    std::mt19937                           rng(12345);
+    std::mt19937 rng(12345);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     for (auto &yi : y)
       yi = uniform(rng);
@@ -407,29 +403,29 @@ namespace fem
     // Gershgorin: a rigorous upper bound on lambda_max of A.
     double gershgorin = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      {
-        double row = 0.0;
-        for (auto it = K.begin(i); it != K.end(i); ++it)
-          row += std::abs(it->value()) * inv_sqrt_m[it->column()];
-        gershgorin = std::max(gershgorin, row * inv_sqrt_m[i]);
-      }
+    {
+      double row = 0.0;
+      for (auto it = K.begin(i); it != K.end(i); ++it)
+        row += std::abs(it->value()) * inv_sqrt_m[it->column()];
+      gershgorin = std::max(gershgorin, row * inv_sqrt_m[i]);
+    }
 
     double rayleigh = 0.0, residual = 0.0;
     for (unsigned int it = 0; it < prm.power_iteration_max; ++it)
-      {
-        w = y;
-        w.scale(inv_sqrt_m);
-        K.vmult(z, w);
-        z.scale(inv_sqrt_m);
-        rayleigh = y * z;
-        w        = z;
-        w.add(-rayleigh, y);
-        residual = w.l2_norm();
-        if (residual < prm.power_iteration_tolerance * rayleigh)
-          break;
-        y = z;
-        y /= y.l2_norm();
-      }
+    {
+      w = y;
+      w.scale(inv_sqrt_m);
+      K.vmult(z, w);
+      z.scale(inv_sqrt_m);
+      rayleigh = y * z;
+      w        = z;
+      w.add(-rayleigh, y);
+      residual = w.l2_norm();
+      if (residual < prm.power_iteration_tolerance * rayleigh)
+        break;
+      y = z;
+      y /= y.l2_norm();
+    }
     // The Rayleigh quotient approaches lambda_max from below; adding the residual norm makes
     // the estimate an upper bound for the converged eigenpair and a cautious one otherwise.
     lambda_cache = std::min(rayleigh + residual, gershgorin);
@@ -440,71 +436,71 @@ namespace fem
   {
     if (!(dt > 0.0))
       throw std::invalid_argument("fem::Platen::step: dt must be > 0, got " + std::to_string(dt));
-    const double dt_mid = 0.5 * (dt_prev + dt); // v lives at half steps
-    const double t_half = t + 0.5 * dt;
-    const double vz_new = velocity_z ? velocity_z(t_half) : 0.0;
+    const double dt_mid      = 0.5 * (dt_prev + dt); // v lives at half steps
+    const double t_half      = t + 0.5 * dt;
+    const double vz_new      = velocity_z ? velocity_z(t_half) : 0.0;
     const std::size_t n_dofs = u.size();
 
     if (prm.model == PlatenModel::rigid)
+    {
+      const double a_z    = (vz_new - rigid_vz) / dt_mid;
+      double f_contact[3] = {0, 0, 0};
+      for (std::size_t i = 0; i < n_dofs; ++i)
+        f_contact[i % 3] += f_ext[i];
+      // frame force: M a = F_contact + R
+      reaction              = mass * a_z - f_contact[2];
+      const double duz_new  = dt * vz_new;
+      const double duz_prev = du_prev[2]; // the body moves as one: every z dof alike
+      double dw             = 0.0;
+      for (std::size_t i = 0; i < n_dofs; ++i)
       {
-        const double a_z = (vz_new - rigid_vz) / dt_mid;
-        double f_contact[3] = {0, 0, 0};
-        for (std::size_t i = 0; i < n_dofs; ++i)
-          f_contact[i % 3] += f_ext[i];
-        // frame force: M a = F_contact + R
-        reaction = mass * a_z - f_contact[2];
-        const double duz_new  = dt * vz_new;
-        const double duz_prev = du_prev[2]; // the body moves as one: every z dof alike
-        double       dw       = 0.0;
-        for (std::size_t i = 0; i < n_dofs; ++i)
-          {
-            const double du_new = (i % 3 == 2) ? duz_new : 0.0;
-            dw += f_ext[i] * 0.5 * (du_prev[i] + du_new);
-            u[i] += du_new;
-            v[i]       = (i % 3 == 2) ? vz_new : 0.0;
-            du_prev[i] = du_new;
-          }
-        // the frame's z force works on the centred increment; it holds x and y (no work)
-        work += dw + reaction * 0.5 * (duz_prev + duz_new);
-        rigid_vz = vz_new;
+        const double du_new = (i % 3 == 2) ? duz_new : 0.0;
+        dw += f_ext[i] * 0.5 * (du_prev[i] + du_new);
+        u[i] += du_new;
+        v[i]       = (i % 3 == 2) ? vz_new : 0.0;
+        du_prev[i] = du_new;
       }
+      // the frame's z force works on the centred increment; it holds x and y (no work)
+      work += dw + reaction * 0.5 * (duz_prev + duz_new);
+      rigid_vz = vz_new;
+    }
     else
+    {
+      const double beta = prm.stiffness_damping;
+      if (beta > 0.0)
+        K.vmult(Kv, v);
+      double dw = 0.0, dd = 0.0, r = 0.0;
+      for (std::size_t i = 0; i < n_dofs; ++i)
       {
-        const double beta = prm.stiffness_damping;
+        const double f = f_ext[i] - Ku[i] - (beta > 0.0 ? beta * Kv[i] : 0.0);
+        const double m = m_node[i / 3];
+        double v_new, f_frame = 0.0;
+        if (!prescribed[i])
+          v_new = v[i] + dt_mid * f / m;
+        else
+        {
+          v_new   = (i % 3 == 2) ? vz_new : 0.0;
+          f_frame = m * (v_new - v[i]) / dt_mid - f; // m a = f + f_frame
+          if (i % 3 == 2)
+            r += f_frame;
+        }
+        const double du_new = dt * v_new;
+        const double du_mid = 0.5 * (du_prev[i] + du_new);
+        dw += (f_ext[i] + f_frame) * du_mid;
         if (beta > 0.0)
-          K.vmult(Kv, v);
-        double dw = 0.0, dd = 0.0, r = 0.0;
-        for (std::size_t i = 0; i < n_dofs; ++i)
-          {
-            const double f = f_ext[i] - Ku[i] - (beta > 0.0 ? beta * Kv[i] : 0.0);
-            const double m = m_node[i / 3];
-            double       v_new, f_frame = 0.0;
-            if (!prescribed[i])
-              v_new = v[i] + dt_mid * f / m;
-            else
-              {
-                v_new   = (i % 3 == 2) ? vz_new : 0.0;
-                f_frame = m * (v_new - v[i]) / dt_mid - f; // m a = f + f_frame
-                if (i % 3 == 2)
-                  r += f_frame;
-              }
-            const double du_new  = dt * v_new;
-            const double du_mid  = 0.5 * (du_prev[i] + du_new);
-            dw += (f_ext[i] + f_frame) * du_mid;
-            if (beta > 0.0)
-              dd += beta * Kv[i] * du_mid;
-            u[i] += du_new;
-            v[i]       = v_new;
-            du_prev[i] = du_new;
-          }
-        reaction = r;
-        work += dw;
-        dissipated += dd;
-        // strain energy at t + dt/2, where the kinetic energy lives: 1/2 u(t+dt) . K u(t); with
-        // it, kinetic + strain + dissipated - work is what central differences conserve
-        strain_energy_mid = 0.5 * (u * Ku);
-        K.vmult(Ku, u);
+          dd += beta * Kv[i] * du_mid;
+        u[i] += du_new;
+        v[i]       = v_new;
+        du_prev[i] = du_new;
       }
+      reaction = r;
+      work += dw;
+      dissipated += dd;
+      // strain energy at t + dt/2, where the kinetic energy lives: 1/2 u(t+dt) . K u(t); with
+      // it, kinetic + strain + dissipated - work is what central differences conserve
+      strain_energy_mid = 0.5 * (u * Ku);
+      K.vmult(Ku, u);
+    }
     f_ext   = 0.0;
     dt_prev = dt;
     time_   = t + dt;
@@ -514,11 +510,11 @@ namespace fem
   // Platen: thin forwarding layer
 
   Platen::Platen(const PlatenGeometry &geometry, const Parameters &parameters)
-    : impl_(std::make_unique<Impl>(geometry, parameters))
+      : impl_(std::make_unique<Impl>(geometry, parameters))
   {}
 
-  Platen::~Platen()                            = default;
-  Platen::Platen(Platen &&) noexcept           = default;
+  Platen::~Platen()                             = default;
+  Platen::Platen(Platen &&) noexcept            = default;
   Platen &Platen::operator=(Platen &&) noexcept = default;
 
   void Platen::set_loaded_face_velocity(std::function<double(double)> velocity_z)
@@ -526,18 +522,39 @@ namespace fem
     impl_->velocity_z = std::move(velocity_z);
   }
 
-  bool Platen::is_rigid() const { return impl_->prm.model == PlatenModel::rigid; }
-  std::size_t Platen::n_nodes() const { return impl_->n_vertices; }
-  std::size_t Platen::n_cells() const { return impl_->cell_vertices.size() / 8; }
-  double Platen::total_mass() const { return impl_->mass; }
-  double Platen::mesh_volume() const { return impl_->volume; }
+  bool Platen::is_rigid() const
+  {
+    return impl_->prm.model == PlatenModel::rigid;
+  }
+  std::size_t Platen::n_nodes() const
+  {
+    return impl_->n_vertices;
+  }
+  std::size_t Platen::n_cells() const
+  {
+    return impl_->cell_vertices.size() / 8;
+  }
+  double Platen::total_mass() const
+  {
+    return impl_->mass;
+  }
+  double Platen::mesh_volume() const
+  {
+    return impl_->volume;
+  }
   double Platen::contact_normal_z() const
   {
     return impl_->geometry.side == PlatenSide::above ? -1.0 : 1.0;
   }
-  double Platen::max_eigenvalue() const { return impl_->lambda_max(); }
+  double Platen::max_eigenvalue() const
+  {
+    return impl_->lambda_max();
+  }
 
-  std::size_t Platen::n_contact_nodes() const { return impl_->contact_nodes.size(); }
+  std::size_t Platen::n_contact_nodes() const
+  {
+    return impl_->contact_nodes.size();
+  }
 
   std::vector<double> Platen::contact_positions() const
   {
@@ -568,17 +585,23 @@ namespace fem
     return out;
   }
 
-  std::vector<double> Platen::contact_areas() const { return impl_->contact_area; }
+  std::vector<double> Platen::contact_areas() const
+  {
+    return impl_->contact_area;
+  }
 
-  const std::vector<unsigned int> &Platen::contact_faces() const { return impl_->contact_faces; }
+  const std::vector<unsigned int> &Platen::contact_faces() const
+  {
+    return impl_->contact_faces;
+  }
 
   void Platen::add_contact_forces(const std::vector<double> &forces)
   {
     const auto &nodes = impl_->contact_nodes;
     if (forces.size() != 3 * nodes.size())
-      throw std::invalid_argument("fem::Platen::add_contact_forces: expected 3 * n_contact_nodes() = " +
-                                  std::to_string(3 * nodes.size()) + " values, got " +
-                                  std::to_string(forces.size()));
+      throw std::invalid_argument(
+        "fem::Platen::add_contact_forces: expected 3 * n_contact_nodes() = " +
+        std::to_string(3 * nodes.size()) + " values, got " + std::to_string(forces.size()));
     for (std::size_t k = 0; k < nodes.size(); ++k)
       for (unsigned int d = 0; d < 3; ++d)
         impl_->f_ext[3 * nodes[k] + d] += forces[3 * k + d];
@@ -593,11 +616,23 @@ namespace fem
     return impl_->prm.time_step_safety * 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
   }
 
-  void Platen::step(const double t, const double dt) { impl_->step(t, dt); }
-  double Platen::time() const { return impl_->time_; }
+  void Platen::step(const double t, const double dt)
+  {
+    impl_->step(t, dt);
+  }
+  double Platen::time() const
+  {
+    return impl_->time_;
+  }
 
-  double Platen::reaction_force() const { return impl_->reaction; }
-  double Platen::compressive_force() const { return contact_normal_z() * impl_->reaction; }
+  double Platen::reaction_force() const
+  {
+    return impl_->reaction;
+  }
+  double Platen::compressive_force() const
+  {
+    return contact_normal_z() * impl_->reaction;
+  }
 
   double Platen::loaded_face_displacement() const
   {
@@ -628,12 +663,18 @@ namespace fem
     return is_rigid() ? 0.0 : impl_->strain_energy_mid;
   }
 
-  double Platen::external_work() const { return impl_->work; }
-  double Platen::damping_dissipation() const { return impl_->dissipated; }
+  double Platen::external_work() const
+  {
+    return impl_->work;
+  }
+  double Platen::damping_dissipation() const
+  {
+    return impl_->dissipated;
+  }
 
   MeshSnapshot Platen::mesh_snapshot() const
   {
-    const Impl  &im = *impl_;
+    const Impl &im = *impl_;
     MeshSnapshot s;
     s.position.resize(im.x0.size());
     s.displacement.assign(im.u.begin(), im.u.end());
@@ -653,33 +694,32 @@ namespace fem
     const double nu     = im.prm.poissons_ratio;
     const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
     const double mu     = E / (2 * (1 + nu));
-    QGauss<3>    centre(1);
-    FEValues<3>  fe_values(im.fe, centre, update_gradients);
-    std::size_t  c = 0;
+    QGauss<3> centre(1);
+    FEValues<3> fe_values(im.fe, centre, update_gradients);
+    std::size_t c = 0;
     for (const auto &cell : im.tria.active_cell_iterators())
+    {
+      fe_values.reinit(cell);
+      double grad[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+      for (unsigned int i = 0; i < 8; ++i)
       {
-        fe_values.reinit(cell);
-        double grad[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-        for (unsigned int i = 0; i < 8; ++i)
-          {
-            const Tensor<1, 3> g = fe_values.shape_grad(i, 0);
-            const unsigned int n = im.cell_vertices[8 * c + i];
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = 0; b < 3; ++b)
-                grad[a][b] += im.u[3 * n + a] * g[b];
-          }
-        double sigma[3][3];
-        const double tr = grad[0][0] + grad[1][1] + grad[2][2];
+        const Tensor<1, 3> g = fe_values.shape_grad(i, 0);
+        const unsigned int n = im.cell_vertices[8 * c + i];
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int b = 0; b < 3; ++b)
-            sigma[a][b] = mu * (grad[a][b] + grad[b][a]) + (a == b ? lambda * tr : 0.0);
-        const double sxx = sigma[0][0], syy = sigma[1][1], szz = sigma[2][2];
-        s.von_mises[c] = std::sqrt(0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) +
-                                          (szz - sxx) * (szz - sxx)) +
-                                   3.0 * (sigma[0][1] * sigma[0][1] + sigma[1][2] * sigma[1][2] +
-                                          sigma[0][2] * sigma[0][2]));
-        ++c;
+            grad[a][b] += im.u[3 * n + a] * g[b];
       }
+      double sigma[3][3];
+      const double tr = grad[0][0] + grad[1][1] + grad[2][2];
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          sigma[a][b] = mu * (grad[a][b] + grad[b][a]) + (a == b ? lambda * tr : 0.0);
+      const double sxx = sigma[0][0], syy = sigma[1][1], szz = sigma[2][2];
+      s.von_mises[c] = std::sqrt(
+        0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) + (szz - sxx) * (szz - sxx)) +
+        3.0 * (sigma[0][1] * sigma[0][1] + sigma[1][2] * sigma[1][2] + sigma[0][2] * sigma[0][2]));
+      ++c;
+    }
     return s;
   }
 
@@ -688,8 +728,14 @@ namespace fem
     fem::write_vtu(mesh_snapshot(), filename);
   }
 
-  std::vector<double> Platen::reference_positions() const { return impl_->x0; }
-  std::vector<double> Platen::nodal_masses() const { return impl_->m_node; }
+  std::vector<double> Platen::reference_positions() const
+  {
+    return impl_->x0;
+  }
+  std::vector<double> Platen::nodal_masses() const
+  {
+    return impl_->m_node;
+  }
 
   std::vector<double> Platen::internal_force(const std::vector<double> &displacement) const
   {
@@ -709,10 +755,10 @@ namespace fem
     im.vertex_field_to_vector(displacement, im.u);
     im.vertex_field_to_vector(velocity, im.v);
     if (!is_rigid())
-      {
-        im.K.vmult(im.Ku, im.u);
-        im.strain_energy_mid = 0.5 * (im.u * im.Ku);
-      }
+    {
+      im.K.vmult(im.Ku, im.u);
+      im.strain_energy_mid = 0.5 * (im.u * im.Ku);
+    }
     else
       im.rigid_vz = velocity.empty() ? 0.0 : velocity[2];
     im.du_prev = 0.0;

@@ -33,19 +33,18 @@ namespace fem
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <UnstructuredGrid>\n"
-        << "    <Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells
-        << "\">\n"
+        << "    <Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n"
         << "      <Points>\n";
     write_vector_array(out, "position", s.position);
     out << "      </Points>\n      <Cells>\n"
         << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     for (std::size_t c = 0; c < n_cells; ++c)
-      {
-        out << "         ";
-        for (unsigned int k = 0; k < 8; ++k)
-          out << ' ' << s.hexahedra[8 * c + k];
-        out << '\n';
-      }
+    {
+      out << "         ";
+      for (unsigned int k = 0; k < 8; ++k)
+        out << ' ' << s.hexahedra[8 * c + k];
+      out << '\n';
+    }
     out << "        </DataArray>\n"
         << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
     for (std::size_t c = 0; c < n_cells; ++c)

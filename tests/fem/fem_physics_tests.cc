@@ -61,22 +61,22 @@ TEST(FemWave, ThinBarLongitudinalSpeedIsSqrtEOverRho)
   fem::Parameters prm;
   prm.element_size        = 0.01;
   prm.loaded_face_lateral = fem::LoadedFaceLateral::free;
-  const double L = 1.0;
-  fem::Platen  bar(box_geometry(0.02, 0.02, L), prm);
+  const double L          = 1.0;
+  fem::Platen bar(box_geometry(0.02, 0.02, L), prm);
 
   const double v0 = -1.0, t_rise = 40e-6; // rise over ~20 cells: little grid dispersion
   bar.set_loaded_face_velocity([&](double t) { return v0 * ramp(t, t_rise); });
 
   const auto x0 = bar.reference_positions();
-  Station    near, far;
+  Station near, far;
   const double z_near = 0.8, z_far = 0.3;
   for (std::size_t i = 0; i < x0.size() / 3; ++i)
-    {
-      if (std::abs(x0[3 * i + 2] - z_near) < 1e-9)
-        near.vertices.push_back(i);
-      if (std::abs(x0[3 * i + 2] - z_far) < 1e-9)
-        far.vertices.push_back(i);
-    }
+  {
+    if (std::abs(x0[3 * i + 2] - z_near) < 1e-9)
+      near.vertices.push_back(i);
+    if (std::abs(x0[3 * i + 2] - z_far) < 1e-9)
+      far.vertices.push_back(i);
+  }
   ASSERT_EQ(near.vertices.size(), 9u);
   ASSERT_EQ(far.vertices.size(), 9u);
 
@@ -85,12 +85,12 @@ TEST(FemWave, ThinBarLongitudinalSpeedIsSqrtEOverRho)
   // stop before the reflection from the free end (z = 0) reaches the far station
   const double t_end = (L + z_far) / c0;
   for (double t = 0.0; t < t_end; t += dt)
-    {
-      bar.step(t, dt);
-      const auto s = bar.mesh_snapshot();
-      near.record(s, t + 0.5 * dt, 0.5 * v0); // velocities live at half steps
-      far.record(s, t + 0.5 * dt, 0.5 * v0);
-    }
+  {
+    bar.step(t, dt);
+    const auto s = bar.mesh_snapshot();
+    near.record(s, t + 0.5 * dt, 0.5 * v0); // velocities live at half steps
+    far.record(s, t + 0.5 * dt, 0.5 * v0);
+  }
   ASSERT_GT(near.crossing, 0.0);
   ASSERT_GT(far.crossing, near.crossing);
   const double c = (z_near - z_far) / (far.crossing - near.crossing);
@@ -123,9 +123,9 @@ namespace
     fem::Parameters prm;
     prm.element_size        = 0.005;
     prm.loaded_face_lateral = fem::LoadedFaceLateral::free;
-    fem::Platen  probe(g, prm);
+    fem::Platen probe(g, prm);
     const double omega_max = std::sqrt(probe.max_eigenvalue());
-    prm.stiffness_damping   = 2.0 * damping_xi / omega_max;
+    prm.stiffness_damping  = 2.0 * damping_xi / omega_max;
     fem::Platen platen(g, prm);
     const double n_z  = platen.contact_normal_z(); // outward: the wall pushes along -n_z
     const double area = platen.mesh_volume() / g.thickness;
@@ -133,10 +133,10 @@ namespace
     // wall: node springs k_i = kappa m_i. On cells extruded along z, m_i = rho A_i h_z / 2 on
     // the contact face (exact for bricks), so k_i follows the tributary area and the wall
     // pressure is uniform
-    const double lambda = platen.max_eigenvalue();
-    const double kappa  = 0.25 * lambda; // raises lambda_max by at most 25 %
-    const double dt     = 0.8 * platen.stable_time_step(); // 0.8 < 0.9 / sqrt(1.25): margin
-    const auto   m      = platen.contact_masses();
+    const double lambda  = platen.max_eigenvalue();
+    const double kappa   = 0.25 * lambda;                   // raises lambda_max by at most 25 %
+    const double dt      = 0.8 * platen.stable_time_step(); // 0.8 < 0.9 / sqrt(1.25): margin
+    const auto m         = platen.contact_masses();
     const std::size_t nc = platen.n_contact_nodes();
 
     // into the wall at 0.02 m/s after a 0.5 ms ramp: strain rate ~1 /s, ~1e-3 strain at 2 ms
@@ -144,29 +144,29 @@ namespace
     platen.set_loaded_face_velocity([&](double time) { return v0 * ramp(time, t_ramp); });
     double contact_sum = 0.0;
     for (double time = 0.0; time < t_end; time += dt)
+    {
+      const auto x = platen.contact_positions();
+      std::vector<double> f(3 * nc, 0.0);
+      contact_sum = 0.0;
+      for (std::size_t i = 0; i < nc; ++i)
       {
-        const auto x = platen.contact_positions();
-        std::vector<double> f(3 * nc, 0.0);
-        contact_sum = 0.0;
-        for (std::size_t i = 0; i < nc; ++i)
-          {
-            const double penetration = n_z * x[3 * i + 2]; // along the outward normal, > 0 past
-            f[3 * i + 2] = penetration > 0.0 ? -n_z * kappa * m[i] * penetration : 0.0;
-            contact_sum -= n_z * f[3 * i + 2]; // compression positive
-          }
-        platen.add_contact_forces(f);
-        platen.step(time, dt);
+        const double penetration = n_z * x[3 * i + 2]; // along the outward normal, > 0 past
+        f[3 * i + 2]             = penetration > 0.0 ? -n_z * kappa * m[i] * penetration : 0.0;
+        contact_sum -= n_z * f[3 * i + 2]; // compression positive
       }
+      platen.add_contact_forces(f);
+      platen.step(time, dt);
+    }
     CompressionResult r;
     // compressive strain positive
-    r.strain      = n_z * (platen.loaded_face_displacement() - platen.contact_face_displacement()) /
-               g.thickness;
+    r.strain =
+      n_z * (platen.loaded_face_displacement() - platen.contact_face_displacement()) / g.thickness;
     r.force       = platen.compressive_force();
     r.expected    = prm.youngs_modulus * r.strain * area;
     r.contact_sum = contact_sum;
     r.dissipated  = platen.damping_dissipation();
-    r.balance     = platen.kinetic_energy() + platen.strain_energy() +
-                platen.damping_dissipation() - platen.external_work();
+    r.balance = platen.kinetic_energy() + platen.strain_energy() + platen.damping_dissipation() -
+                platen.external_work();
     // the work done on the platen, net of what the wall took back, is what it stores
     r.work = platen.strain_energy();
     return r;
@@ -221,7 +221,7 @@ namespace
     prm.element_size     = 0.005;
     prm.time_step_safety = 1.0;
     fem::Platen platen(box_geometry(0.02, 0.02, 0.02), prm);
-    std::mt19937                           rng(7);
+    std::mt19937 rng(7);
     std::uniform_real_distribution<double> uniform(-1e-9, 1e-9);
     std::vector<double> u(3 * platen.n_nodes()), v(u.size(), 0.0);
     for (auto &x : u)

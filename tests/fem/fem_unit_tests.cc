@@ -67,10 +67,10 @@ TEST(FemMesh, BoxLumpedMassSumsToRhoV)
   EXPECT_NEAR(platen.mesh_volume() / V, 1.0, 1e-12);
   double sum = 0.0;
   for (const double m : platen.nodal_masses())
-    {
-      EXPECT_GT(m, 0.0);
-      sum += m;
-    }
+  {
+    EXPECT_GT(m, 0.0);
+    sum += m;
+  }
   EXPECT_NEAR(sum / platen.total_mass(), 1.0, 1e-12); // same numbers summed in another order
 }
 
@@ -95,54 +95,54 @@ TEST(FemMesh, FacesSitOnTheirSideAndContactNormalsPointOut)
   prm.element_size = 0.005;
   for (const auto side : {fem::PlatenSide::above, fem::PlatenSide::below})
     for (const bool cylinder : {false, true})
+    {
+      const double cz = 0.05, t = 0.02;
+      const fem::Platen platen(cylinder ? cylinder_geometry(0.05, t, cz, side)
+                                        : box_geometry(0.06, 0.03, t, cz, side),
+                               prm);
+      const double n_z = (side == fem::PlatenSide::above) ? -1.0 : 1.0;
+      EXPECT_DOUBLE_EQ(platen.contact_normal_z(), n_z);
+
+      const auto x = platen.contact_positions();
+      ASSERT_EQ(x.size(), 3 * platen.n_contact_nodes());
+      for (std::size_t i = 0; i < platen.n_contact_nodes(); ++i)
+        EXPECT_NEAR(x[3 * i + 2], cz, 1e-12); // mesh vertices placed by a shift: round-off
+
+      // the body lies on its side of the contact plane
+      const auto x0 = platen.reference_positions();
+      double zmin = 1e9, zmax = -1e9;
+      for (std::size_t i = 2; i < x0.size(); i += 3)
       {
-        const double cz = 0.05, t = 0.02;
-        const fem::Platen platen(cylinder ? cylinder_geometry(0.05, t, cz, side) :
-                                            box_geometry(0.06, 0.03, t, cz, side),
-                                 prm);
-        const double n_z = (side == fem::PlatenSide::above) ? -1.0 : 1.0;
-        EXPECT_DOUBLE_EQ(platen.contact_normal_z(), n_z);
-
-        const auto x = platen.contact_positions();
-        ASSERT_EQ(x.size(), 3 * platen.n_contact_nodes());
-        for (std::size_t i = 0; i < platen.n_contact_nodes(); ++i)
-          EXPECT_NEAR(x[3 * i + 2], cz, 1e-12); // mesh vertices placed by a shift: round-off
-
-        // the body lies on its side of the contact plane
-        const auto   x0   = platen.reference_positions();
-        double       zmin = 1e9, zmax = -1e9;
-        for (std::size_t i = 2; i < x0.size(); i += 3)
-          {
-            zmin = std::min(zmin, x0[i]);
-            zmax = std::max(zmax, x0[i]);
-          }
-        EXPECT_NEAR(zmin, n_z < 0 ? cz : cz - t, 1e-12);
-        EXPECT_NEAR(zmax, n_z < 0 ? cz + t : cz, 1e-12);
-
-        // every face normal (p1-p0)x(p3-p0) points out of the platen, and the faces tile the
-        // contact face: their areas (each quad as two triangles) sum to the face area
-        const auto &faces = platen.contact_faces();
-        ASSERT_EQ(faces.size() % 4, 0u);
-        double area = 0.0;
-        for (std::size_t f = 0; f < faces.size(); f += 4)
-          {
-            auto p = [&](unsigned int k, unsigned int d) { return x[3 * faces[f + k] + d]; };
-            const double ax = p(1, 0) - p(0, 0), ay = p(1, 1) - p(0, 1);
-            const double bx = p(3, 0) - p(0, 0), by = p(3, 1) - p(0, 1);
-            EXPECT_GT((ax * by - ay * bx) * n_z, 0.0);
-            const double cx = p(2, 0) - p(0, 0), cy = p(2, 1) - p(0, 1);
-            area += 0.5 * std::abs(ax * cy - ay * cx) + 0.5 * std::abs(cx * by - cy * bx);
-          }
-        double trib = 0.0;
-        for (const double a : platen.contact_areas())
-          trib += a;
-        // planar quads: the tributary areas integrate the same face, exact up to round-off
-        EXPECT_NEAR(trib / area, 1.0, 1e-10);
-        if (!cylinder)
-          {
-            EXPECT_NEAR(area / (0.06 * 0.03), 1.0, 1e-10);
-          }
+        zmin = std::min(zmin, x0[i]);
+        zmax = std::max(zmax, x0[i]);
       }
+      EXPECT_NEAR(zmin, n_z < 0 ? cz : cz - t, 1e-12);
+      EXPECT_NEAR(zmax, n_z < 0 ? cz + t : cz, 1e-12);
+
+      // every face normal (p1-p0)x(p3-p0) points out of the platen, and the faces tile the
+      // contact face: their areas (each quad as two triangles) sum to the face area
+      const auto &faces = platen.contact_faces();
+      ASSERT_EQ(faces.size() % 4, 0u);
+      double area = 0.0;
+      for (std::size_t f = 0; f < faces.size(); f += 4)
+      {
+        auto p          = [&](unsigned int k, unsigned int d) { return x[3 * faces[f + k] + d]; };
+        const double ax = p(1, 0) - p(0, 0), ay = p(1, 1) - p(0, 1);
+        const double bx = p(3, 0) - p(0, 0), by = p(3, 1) - p(0, 1);
+        EXPECT_GT((ax * by - ay * bx) * n_z, 0.0);
+        const double cx = p(2, 0) - p(0, 0), cy = p(2, 1) - p(0, 1);
+        area += 0.5 * std::abs(ax * cy - ay * cx) + 0.5 * std::abs(cx * by - cy * bx);
+      }
+      double trib = 0.0;
+      for (const double a : platen.contact_areas())
+        trib += a;
+      // planar quads: the tributary areas integrate the same face, exact up to round-off
+      EXPECT_NEAR(trib / area, 1.0, 1e-10);
+      if (!cylinder)
+      {
+        EXPECT_NEAR(area / (0.06 * 0.03), 1.0, 1e-10);
+      }
+    }
 }
 
 TEST(FemStiffness, RigidTranslationAndSmallRotationGiveNoInternalForce)
@@ -150,8 +150,8 @@ TEST(FemStiffness, RigidTranslationAndSmallRotationGiveNoInternalForce)
   fem::Parameters prm;
   prm.element_size = 0.006;
   const fem::Platen platen(cylinder_geometry(0.05, 0.02, 0.0, fem::PlatenSide::below), prm);
-  const auto        x0 = platen.reference_positions();
-  const std::size_t n  = x0.size();
+  const auto x0       = platen.reference_positions();
+  const std::size_t n = x0.size();
 
   // translation by 1 mm in each direction
   std::vector<double> u(n);
@@ -164,12 +164,12 @@ TEST(FemStiffness, RigidTranslationAndSmallRotationGiveNoInternalForce)
   // infinitesimal rotation u = theta x (x - c): zero strain, so K u = 0 in linear elasticity
   const double theta[3] = {1e-3, -2e-3, 3e-3}, c[3] = {0.01, -0.02, 0.005};
   for (std::size_t v = 0; v < n / 3; ++v)
-    {
-      const double r[3] = {x0[3 * v] - c[0], x0[3 * v + 1] - c[1], x0[3 * v + 2] - c[2]};
-      u[3 * v]     = theta[1] * r[2] - theta[2] * r[1];
-      u[3 * v + 1] = theta[2] * r[0] - theta[0] * r[2];
-      u[3 * v + 2] = theta[0] * r[1] - theta[1] * r[0];
-    }
+  {
+    const double r[3] = {x0[3 * v] - c[0], x0[3 * v + 1] - c[1], x0[3 * v + 2] - c[2]};
+    u[3 * v]          = theta[1] * r[2] - theta[2] * r[1];
+    u[3 * v + 1]      = theta[2] * r[0] - theta[0] * r[2];
+    u[3 * v + 2]      = theta[0] * r[1] - theta[1] * r[0];
+  }
   const double rot_scale = prm.youngs_modulus * prm.element_size * max_abs(u);
   ASSERT_GT(max_abs(u), 0.0);
   EXPECT_LT(max_abs(platen.internal_force(u)), 1e-10 * rot_scale); // round-off only
@@ -182,34 +182,34 @@ TEST(FemStiffness, LinearFieldLeavesInteriorNodesInEquilibrium)
   fem::Parameters prm;
   prm.element_size = 0.005;
   const fem::Platen platen(box_geometry(0.02, 0.02, 0.02, 0.0, fem::PlatenSide::above), prm);
-  const auto        x0 = platen.reference_positions();
+  const auto x0 = platen.reference_positions();
   std::vector<double> u(x0.size());
   for (std::size_t v = 0; v < x0.size() / 3; ++v)
-    {
-      u[3 * v]     = 1e-4 * x0[3 * v] + 2e-4 * x0[3 * v + 1];
-      u[3 * v + 1] = -3e-4 * x0[3 * v + 2];
-      u[3 * v + 2] = 5e-4 * x0[3 * v + 2] + 1e-4 * x0[3 * v];
-    }
-  const auto f = platen.internal_force(u);
-  const double scale = prm.youngs_modulus * 5e-4 * 0.005 * 0.005; // sigma * element face area
-  double resultant[3] = {0, 0, 0};
+  {
+    u[3 * v]     = 1e-4 * x0[3 * v] + 2e-4 * x0[3 * v + 1];
+    u[3 * v + 1] = -3e-4 * x0[3 * v + 2];
+    u[3 * v + 2] = 5e-4 * x0[3 * v + 2] + 1e-4 * x0[3 * v];
+  }
+  const auto f           = platen.internal_force(u);
+  const double scale     = prm.youngs_modulus * 5e-4 * 0.005 * 0.005; // sigma * element face area
+  double resultant[3]    = {0, 0, 0};
   std::size_t n_interior = 0;
   for (std::size_t v = 0; v < x0.size() / 3; ++v)
+  {
+    bool interior = true;
+    for (unsigned int d = 0; d < 3; ++d)
     {
-      bool interior = true;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          const double lo = d < 2 ? -0.01 : 0.0, hi = d < 2 ? 0.01 : 0.02;
-          interior = interior && x0[3 * v + d] > lo + 1e-9 && x0[3 * v + d] < hi - 1e-9;
-          resultant[d] += f[3 * v + d];
-        }
-      if (interior)
-        {
-          ++n_interior;
-          for (unsigned int d = 0; d < 3; ++d)
-            EXPECT_LT(std::abs(f[3 * v + d]), 1e-9 * scale); // round-off only
-        }
+      const double lo = d < 2 ? -0.01 : 0.0, hi = d < 2 ? 0.01 : 0.02;
+      interior = interior && x0[3 * v + d] > lo + 1e-9 && x0[3 * v + d] < hi - 1e-9;
+      resultant[d] += f[3 * v + d];
     }
+    if (interior)
+    {
+      ++n_interior;
+      for (unsigned int d = 0; d < 3; ++d)
+        EXPECT_LT(std::abs(f[3 * v + d]), 1e-9 * scale); // round-off only
+    }
+  }
   EXPECT_EQ(n_interior, 27u);
   for (unsigned int d = 0; d < 3; ++d)
     EXPECT_LT(std::abs(resultant[d]), 1e-9 * scale);
@@ -223,16 +223,16 @@ TEST(FemTimeStep, PowerIterationMatchesDenseEigenvalue)
   const fem::Platen platen(box_geometry(0.01, 0.01, 0.01, 0.0, fem::PlatenSide::above), prm);
   const std::size_t n = 3 * platen.n_nodes();
   ASSERT_EQ(n, 81u);
-  const auto      m = platen.nodal_masses();
+  const auto m = platen.nodal_masses();
   Eigen::MatrixXd A(n, n);
   for (std::size_t j = 0; j < n; ++j)
-    {
-      std::vector<double> e(n, 0.0);
-      e[j]         = 1.0;
-      const auto k = platen.internal_force(e);
-      for (std::size_t i = 0; i < n; ++i)
-        A(i, j) = k[i] / std::sqrt(m[i / 3] * m[j / 3]);
-    }
+  {
+    std::vector<double> e(n, 0.0);
+    e[j]         = 1.0;
+    const auto k = platen.internal_force(e);
+    for (std::size_t i = 0; i < n; ++i)
+      A(i, j) = k[i] / std::sqrt(m[i / 3] * m[j / 3]);
+  }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
   const double lambda_dense = eig.eigenvalues().maxCoeff();
   // the estimate is Rayleigh quotient + residual norm with residual < 1e-4 of it: an upper
@@ -248,9 +248,9 @@ TEST(FemTimeStep, DampingShortensTheStableStep)
 {
   fem::Parameters prm;
   prm.element_size = 0.005;
-  const auto  g = box_geometry(0.02, 0.02, 0.01, 0.0, fem::PlatenSide::above);
+  const auto g     = box_geometry(0.02, 0.02, 0.01, 0.0, fem::PlatenSide::above);
   const fem::Platen undamped(g, prm);
-  const double omega = std::sqrt(undamped.max_eigenvalue());
+  const double omega    = std::sqrt(undamped.max_eigenvalue());
   prm.stiffness_damping = 0.2 / omega; // xi = 0.1 at the highest mode
   const fem::Platen damped(g, prm);
   const double expected = undamped.stable_time_step() * (std::sqrt(1.0 + 0.01) - 0.1);
@@ -269,16 +269,16 @@ TEST(FemRigid, ReactionBalancesContactForcesAndEnergyCloses)
   const double v0 = -0.05, t_ramp = 1e-3, dt = 1e-5, F = 2000.0; // F: rock pushes up [N]
   platen.set_loaded_face_velocity([&](double t) { return v0 * ramp(t, t_ramp); });
   const std::size_t nc = platen.n_contact_nodes();
-  const auto z0 = platen.contact_positions();
-  double t = 0.0;
+  const auto z0        = platen.contact_positions();
+  double t             = 0.0;
   for (int n = 0; n < 200; ++n, t += dt)
-    {
-      std::vector<double> f(3 * nc, 0.0);
-      for (std::size_t i = 0; i < nc; ++i)
-        f[3 * i + 2] = F / nc;
-      platen.add_contact_forces(f);
-      platen.step(t, dt);
-    }
+  {
+    std::vector<double> f(3 * nc, 0.0);
+    for (std::size_t i = 0; i < nc; ++i)
+      f[3 * i + 2] = F / nc;
+    platen.add_contact_forces(f);
+    platen.step(t, dt);
+  }
   // after the ramp the body moves uniformly: the frame holds exactly the contact force
   // (inertia M a is zero at constant velocity; the rest is round-off of a 2000 N sum)
   EXPECT_NEAR(platen.reaction_force(), -F, 1e-9 * F);
@@ -316,25 +316,27 @@ TEST(FemOutput, SnapshotUsesVtkHexahedraWithPositiveVolume)
   fem::Parameters prm;
   prm.element_size = 0.01;
   const fem::Platen platen(cylinder_geometry(0.05, 0.02, 0.0, fem::PlatenSide::above), prm);
-  const auto        s = platen.mesh_snapshot();
+  const auto s = platen.mesh_snapshot();
   ASSERT_EQ(s.n_cells(), platen.n_cells());
   ASSERT_EQ(s.n_vertices(), platen.n_nodes());
   // VTK order: 0-1-2-3 counter-clockwise seen from 4-5-6-7's side, so the corner tetrahedron
   // (0, 1, 3, 4) has a positive volume for every cell
   for (std::size_t c = 0; c < s.n_cells(); ++c)
+  {
+    auto p = [&](unsigned int k, unsigned int d) {
+      return s.position[3 * s.hexahedra[8 * c + k] + d];
+    };
+    double a[3], b[3], e[3];
+    for (unsigned int d = 0; d < 3; ++d)
     {
-      auto p = [&](unsigned int k, unsigned int d) { return s.position[3 * s.hexahedra[8 * c + k] + d]; };
-      double a[3], b[3], e[3];
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          a[d] = p(1, d) - p(0, d);
-          b[d] = p(3, d) - p(0, d);
-          e[d] = p(4, d) - p(0, d);
-        }
-      const double vol = a[0] * (b[1] * e[2] - b[2] * e[1]) - a[1] * (b[0] * e[2] - b[2] * e[0]) +
-                         a[2] * (b[0] * e[1] - b[1] * e[0]);
-      EXPECT_GT(vol, 0.0) << "cell " << c;
+      a[d] = p(1, d) - p(0, d);
+      b[d] = p(3, d) - p(0, d);
+      e[d] = p(4, d) - p(0, d);
     }
+    const double vol = a[0] * (b[1] * e[2] - b[2] * e[1]) - a[1] * (b[0] * e[2] - b[2] * e[0]) +
+                       a[2] * (b[0] * e[1] - b[1] * e[0]);
+    EXPECT_GT(vol, 0.0) << "cell " << c;
+  }
   const std::string file = std::string(COSIM_BINARY_DIR) + "/fem_snapshot_test.vtu";
   EXPECT_NO_THROW(platen.write_vtu(file));
   EXPECT_THROW(platen.write_vtu("/nonexistent-folder/x.vtu"), std::runtime_error);

@@ -40,39 +40,39 @@ namespace fem
     constexpr unsigned int free_faces = 0; ///< lateral hull / sides: traction free
     constexpr unsigned int loaded     = 1; ///< face opposite the contact face: prescribed motion
     constexpr unsigned int contact    = 2; ///< face in the plane z = contact_z, touches the rock
-  } // namespace boundary_id
+  }                                        // namespace boundary_id
 
   /// Geometry of one platen. Lengths [m]. The body is centred on (center_x, center_y).
   struct PlatenGeometry
   {
-    PlatenShape shape  = PlatenShape::cylinder;
-    double diameter    = 0.07;  ///< cylinder diameter [m]
-    double size_x      = 0.07;  ///< box extent along x [m]
-    double size_y      = 0.04;  ///< box extent along y [m]
-    double thickness   = 0.02;  ///< extent along z [m]
-    double contact_z   = 0.0;   ///< z of the contact face [m]
-    double center_x    = 0.0;   ///< [m]
-    double center_y    = 0.0;   ///< [m]
-    PlatenSide side    = PlatenSide::above;
+    PlatenShape shape = PlatenShape::cylinder;
+    double diameter   = 0.07; ///< cylinder diameter [m]
+    double size_x     = 0.07; ///< box extent along x [m]
+    double size_y     = 0.04; ///< box extent along y [m]
+    double thickness  = 0.02; ///< extent along z [m]
+    double contact_z  = 0.0;  ///< z of the contact face [m]
+    double center_x   = 0.0;  ///< [m]
+    double center_y   = 0.0;  ///< [m]
+    PlatenSide side   = PlatenSide::above;
   };
 
   /// Model, material and numerics of one platen. Defaults: elastic steel.
   struct Parameters
   {
-    PlatenModel model          = PlatenModel::elastic;
-    double youngs_modulus      = 200e9;  ///< E [Pa]
-    double poissons_ratio      = 0.3;    ///< nu [-]
-    double density             = 7850.0; ///< rho [kg/m^3]
+    PlatenModel model     = PlatenModel::elastic;
+    double youngs_modulus = 200e9;  ///< E [Pa]
+    double poissons_ratio = 0.3;    ///< nu [-]
+    double density        = 7850.0; ///< rho [kg/m^3]
     /// Stiffness-proportional (Rayleigh beta) damping: f_damp = beta K v. beta [s]; 0 = none.
-    double stiffness_damping   = 0.0;
+    double stiffness_damping = 0.0;
     /// Target element edge length [m]; the mesh uses the nearest size its generator can make
     /// (not larger than about 1.5 times this).
-    double element_size        = 0.005;
+    double element_size = 0.005;
     /// stable_time_step() = safety * (critical step from the power-iteration lambda_max) [-].
-    double time_step_safety    = 0.9;
+    double time_step_safety               = 0.9;
     LoadedFaceLateral loaded_face_lateral = LoadedFaceLateral::fixed;
     /// Power iteration for lambda_max(M^-1 K): iteration cap and relative residual to stop at.
-    unsigned int power_iteration_max   = 2000;
-    double power_iteration_tolerance   = 1e-4;
+    unsigned int power_iteration_max = 2000;
+    double power_iteration_tolerance = 1e-4;
   };
 } // namespace fem

@@ -56,7 +56,7 @@ namespace fem
     ~Platen();
     Platen(Platen &&) noexcept;
     Platen &operator=(Platen &&) noexcept;
-    Platen(const Platen &) = delete;
+    Platen(const Platen &)            = delete;
     Platen &operator=(const Platen &) = delete;
 
     /// Prescribed z-velocity [m/s] of the loaded face as a function of time t [s]; evaluated at
@@ -65,11 +65,11 @@ namespace fem
 
     // ---- sizes and constants ------------------------------------------------------------
     bool is_rigid() const;
-    std::size_t n_nodes() const;       ///< mesh vertices
-    std::size_t n_cells() const;       ///< hexahedra
-    double total_mass() const;         ///< sum of the lumped nodal masses [kg]
-    double mesh_volume() const;        ///< volume of the (trilinear) mesh [m^3]
-    double contact_normal_z() const;   ///< -1 (top platen) or +1 (bottom): outward normal z
+    std::size_t n_nodes() const;     ///< mesh vertices
+    std::size_t n_cells() const;     ///< hexahedra
+    double total_mass() const;       ///< sum of the lumped nodal masses [kg]
+    double mesh_volume() const;      ///< volume of the (trilinear) mesh [m^3]
+    double contact_normal_z() const; ///< -1 (top platen) or +1 (bottom): outward normal z
     /// Largest eigenvalue of M^-1 K [1/s^2] by power iteration (0 for a rigid platen).
     double max_eigenvalue() const;
 
@@ -94,7 +94,7 @@ namespace fem
     double stable_time_step() const;
     /// Advance from t to t + dt [s]. See the lifecycle in the file comment.
     void step(double t, double dt);
-    double time() const;               ///< time reached by the last step [s]
+    double time() const; ///< time reached by the last step [s]
 
     // ---- load cell and energies -----------------------------------------------------------
     /// z-force [N] that the frame applies to the platen at the loaded face, along +z, at the
@@ -106,7 +106,7 @@ namespace fem
     double loaded_face_displacement() const;
     /// Mean z-displacement of the contact face [m].
     double contact_face_displacement() const;
-    double kinetic_energy() const;     ///< 1/2 v M v [J]
+    double kinetic_energy() const; ///< 1/2 v M v [J]
     /// 1/2 u(t+dt) . K u(t) [J], the strain energy at the half step (0 for rigid).
     double strain_energy() const;
     /// Work of contact forces and of the prescribed-motion reaction [J]: sum over steps of
