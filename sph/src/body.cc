@@ -110,6 +110,7 @@ namespace sph
     reaction_.assign(n, Vector<dim>::Zero());
     stress_work_.assign(n, 0.0);
     Q_.assign(n, Tensor<dim>::Zero());
+    volume_next_.assign(n, 0.0);
     area0_.assign(n, Vector<dim>::Zero());
 
     build_pairs();
@@ -351,16 +352,18 @@ namespace sph
             stress_work_[i] += p_.volume[i] * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
             p_.stress[i]  = up.stress;
             p_.history[i] = up.state;
+            // other particles still read the old volume in this loop: write the new one aside
             const double tr = de.trace();
-            p_.volume[i] *= std::exp(tr);
-            p_.density[i] = p_.mass[i] / p_.volume[i];
+            volume_next_[i] = p_.volume[i] * std::exp(tr);
+            p_.density[i]   = p_.mass[i] / volume_next_[i];
             if (evolve_h)
               p_.h[i] *= std::exp(tr / dim);
             p_.F[i] = (Tensor<dim>::Identity() + grad_v * dt) * p_.F[i];
-            Q_[i]   = p_.volume[i] * p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
+            Q_[i]   = volume_next_[i] * p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
           }
       },
       model_);
+    p_.volume.swap(volume_next_);
     dt_last_ = 0; // a second call at the same positions changes nothing
   }
 

@@ -166,6 +166,7 @@ namespace sph
     std::vector<Vector<dim>>  prescribed_;
     std::vector<Vector<dim>>  reaction_;
     std::vector<double>       stress_work_; // per particle: integrated stress power [J]
+    std::vector<double>       volume_next_; // per particle: scratch for the UL volume update
     double pressure_      = 0;
     double area_factor_   = 1;
     double wave_speed_    = 0;

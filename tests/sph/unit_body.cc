@@ -1,0 +1,221 @@
+#include <sph/body.h>
+#include <sph/lattice.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+namespace
+{
+  using namespace sph;
+
+  MaterialParameters elastic_rock()
+  {
+    MaterialParameters m;
+    m.model          = RockModel::elastic;
+    m.density        = 2700;
+    m.youngs_modulus = 50e9;
+    m.poissons_ratio = 0.25;
+    return m;
+  }
+
+  Parameters numerics(const Formulation form, const double dx)
+  {
+    Parameters p;
+    p.form    = form;
+    p.spacing = dx;
+    return p;
+  }
+
+  /// Moves every particle with the velocity field G x for one step of dt: afterwards
+  /// x = (I + dt G) X exactly (up to round-off), an affine deformation.
+  template <int dim>
+  void affine_step(Body<dim> &body, const Tensor<dim> &G, const double dt)
+  {
+    body.compute_forces(); // stress-free: round-off forces only
+    for (unsigned i = 0; i < body.n_particles(); ++i)
+      {
+        body.set_velocity(i, G * body.positions()[i]);
+        // cancel the round-off force so that the step is exactly affine even for a long dt
+        body.external_forces()[i] = -body.internal_forces()[i];
+      }
+    body.integrate(dt);
+    body.compute_forces();
+  }
+
+  TEST(SphCorrection, LinearFieldGradientExactEverywhereTotalLagrangian)
+  {
+    // With renormalised gradients, F of an affine motion is exact at every particle, surface and
+    // edges included: only round-off (1e-10 on entries of order 1) may remain.
+    for (const Formulation form :
+         {Formulation::total_lagrangian_corrected, Formulation::total_lagrangian})
+      {
+        const Lattice<3> lat = make_cylinder<3>(0.02, 0.03, 0.002);
+        Body<3>          body(numerics(form, 0.002), elastic_rock(), lat.positions, lat.volumes);
+        Tensor<3>        G;
+        G << 0.1, 0.02, -0.03, 0.01, -0.05, 0.04, 0.02, 0.03, 0.07;
+        const double dt = 0.1;
+        affine_step(body, G, dt);
+        const Tensor<3> expected = Tensor<3>::Identity() + dt * G;
+        double          worst    = 0;
+        for (unsigned i = 0; i < body.n_particles(); ++i)
+          worst = std::max(worst, (body.deformation_gradient(i) - expected).cwiseAbs().maxCoeff());
+        EXPECT_LT(worst, 1e-10) << "FORM " << static_cast<int>(form);
+      }
+  }
+
+  TEST(SphCorrection, LinearVelocityGradientExactUpdatedLagrangian)
+  {
+    // FORM 1: the velocity gradient of a linear field is exact at every particle, so a uniform
+    // strain increment gives the same stress everywhere (1e-8 relative: round-off through C).
+    const Lattice<2> lat = make_disc<2>(0.02, 0.01, 0.001);
+    Body<2> body(numerics(Formulation::updated_lagrangian_corrected, 0.001), elastic_rock(),
+                 lat.positions, lat.volumes);
+    Tensor<2> G;
+    G << 1e-3, 2e-4, -5e-4, -3e-4;
+    affine_step(body, G, 1.0);
+    const Tensor<2> s0 = body.stress(0);
+    ASSERT_GT(s0.norm(), 1e6) << "the increment must stress the body";
+    double worst = 0;
+    for (unsigned i = 0; i < body.n_particles(); ++i)
+      worst = std::max(worst, (body.stress(i) - s0).norm());
+    EXPECT_LT(worst, 1e-8 * s0.norm());
+  }
+
+  template <int dim>
+  void check_momentum(const Formulation form, const RockModel model)
+  {
+    // An isolated body with random velocities: every pair force is applied with opposite signs,
+    // so the total momentum changes only by round-off of the sums (1e-12 of sum |m v|).
+    const Lattice<dim> lat = make_disc<dim>(0.02, 0.006, 0.001);
+    MaterialParameters m   = elastic_rock();
+    m.model                = model;
+    m.cohesion             = 5e6;
+    m.friction_angle       = 0.6;
+    m.tensile_strength     = 2e6;
+    Body<dim>                              body(numerics(form, 0.001), m, lat.positions, lat.volumes);
+    std::mt19937                           rng(7);
+    std::normal_distribution<double>       u(0.0, 1.0);
+    double                                 scale = 0;
+    for (unsigned i = 0; i < body.n_particles(); ++i)
+      {
+        Vector<dim> v;
+        for (int d = 0; d < dim; ++d)
+          v[d] = u(rng);
+        body.set_velocity(i, v);
+        scale += body.masses()[i] * v.norm();
+      }
+    const Vector<dim> p0 = body.momentum();
+    for (int step = 0; step < 40; ++step)
+      {
+        body.compute_forces();
+        body.integrate(body.stable_time_step());
+      }
+    double max_force = 0;
+    for (const auto &f : body.internal_forces())
+      max_force = std::max(max_force, f.norm());
+    ASSERT_GT(max_force, 0.0) << "the body must be loaded, or the test proves nothing";
+    EXPECT_LT((body.momentum() - p0).norm(), 1e-12 * scale) << "FORM " << static_cast<int>(form);
+  }
+
+  TEST(SphPairForces, MomentumOfIsolatedBodyConstant)
+  {
+    for (const Formulation f :
+         {Formulation::updated_lagrangian, Formulation::updated_lagrangian_corrected,
+          Formulation::total_lagrangian, Formulation::total_lagrangian_corrected})
+      {
+        check_momentum<2>(f, RockModel::mohr_coulomb_cutoff);
+        check_momentum<3>(f, RockModel::elastic);
+      }
+  }
+
+  TEST(SphBody, RigidRotationGivesNoStress)
+  {
+    // a rigid spin increment: the objective (Hughes-Winget) update keeps the stress zero up to
+    // the stretch of the linearised rotation I + dt W (F^T F - I = dt^2 W^T W ~ 2e-8): 1e-7 E
+    const Lattice<3> lat = make_block<3>(Vector<3>::Zero(), Vector<3>::Constant(0.01), 0.001);
+    Body<3>   body(numerics(Formulation::total_lagrangian_corrected, 0.001), elastic_rock(),
+                   lat.positions, lat.volumes);
+    Tensor<3> W;
+    W << 0, -1, 0.5, 1, 0, -0.2, -0.5, 0.2, 0;
+    affine_step(body, W, 1e-4);
+    double worst = 0;
+    for (unsigned i = 0; i < body.n_particles(); ++i)
+      worst = std::max(worst, body.stress3(i).norm());
+    EXPECT_LT(worst, 1e-7 * 50e9);
+  }
+
+  TEST(SphBody, SameResultForOneAndTwoThreads)
+  {
+    // every parallel loop is a gather over fixed, ordered lists, so positions are bitwise equal
+    // for any thread count; a bitwise comparison is the point of this test
+    std::vector<std::vector<Vector<3>>> result;
+    for (const int threads : {1, 2})
+      {
+        const Lattice<3> lat = make_cylinder<3>(0.01, 0.02, 0.001);
+        Parameters       p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
+        p.n_threads          = threads;
+        MaterialParameters m = elastic_rock();
+        m.model              = RockModel::mohr_coulomb;
+        m.cohesion           = 1e6;
+        m.friction_angle     = 0.5;
+        Body<3> body(p, m, lat.positions, lat.volumes);
+        for (unsigned i = 0; i < body.n_particles(); ++i)
+          if (body.positions()[i][2] > 0.019)
+            body.constrain(i, 2, -1.0);
+        for (int s = 0; s < 30; ++s)
+          {
+            body.compute_forces();
+            body.integrate(body.stable_time_step());
+          }
+        result.push_back(body.positions());
+      }
+    EXPECT_EQ(0, std::memcmp(result[0].data(), result[1].data(),
+                             result[0].size() * sizeof(Vector<3>)));
+  }
+
+  TEST(SphPressure, UniformPressureOnBlock)
+  {
+    // the area vectors of a closed body sum to zero by pair antisymmetry (round-off), and those
+    // on the face z = max add up to the face area (flat lattice face: the calibration case, 1e-6)
+    const double     a = 0.01, dx = 0.001;
+    const Lattice<3> lat = make_block<3>(Vector<3>::Zero(), Vector<3>::Constant(a), dx);
+    Body<3>          body(numerics(Formulation::total_lagrangian_corrected, dx), elastic_rock(),
+                          lat.positions, lat.volumes);
+    const double p = 1e6;
+    body.set_surface_pressure(p);
+    body.compute_forces();
+    Vector<3> total = Vector<3>::Zero();
+    double    top = 0, norm = 0;
+    for (unsigned i = 0; i < body.n_particles(); ++i)
+      {
+        const Vector<3> &f = body.pressure_forces()[i];
+        total += f;
+        norm += f.norm();
+        // the top third of the block, away from the side faces
+        const Vector<3> &x = body.positions()[i];
+        if (x[2] > 2 * a / 3 && x[0] > 0.3 * a && x[0] < 0.7 * a && x[1] > 0.3 * a &&
+            x[1] < 0.7 * a)
+          top += f[2];
+      }
+    ASSERT_GT(norm, 0.0);
+    EXPECT_LT(total.norm(), 1e-12 * norm);
+    // interior columns 0.3a..0.7a: 4 x 4 columns of dx^2 each, pushed down (compression)
+    EXPECT_NEAR(top, -p * 16 * dx * dx, 1e-6 * p * 16 * dx * dx);
+  }
+
+  TEST(SphBody, RejectsBadParameters)
+  {
+    const Lattice<2> lat = make_block<2>(Vector<2>::Zero(), Vector<2>::Constant(0.01), 0.001);
+    Parameters       p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
+    p.tssfac             = 2;
+    EXPECT_THROW(Body<2>(p, elastic_rock(), lat.positions, lat.volumes), std::invalid_argument);
+    MaterialParameters m = elastic_rock();
+    m.poissons_ratio     = 0.5;
+    EXPECT_THROW(Body<2>(numerics(Formulation::total_lagrangian_corrected, 0.001), m,
+                         lat.positions, lat.volumes),
+                 std::invalid_argument);
+  }
+} // namespace
