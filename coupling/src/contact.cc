@@ -1,4 +1,6 @@
 #include <coupling/contact.h>
+// The V3 / std::array brace initialisers are intended; deal.II's flags turn -Wmissing-braces on.
+#pragma GCC diagnostic ignored "-Wmissing-braces"
 
 #include <algorithm>
 #include <cmath>

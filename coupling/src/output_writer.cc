@@ -57,6 +57,7 @@ namespace coupling
       {"force_bottom_kN", [](const HistoryRow &r) { return r.force_bottom * 1e-3; }},
       {"stress_MPa", [](const HistoryRow &r) { return r.stress * 1e-6; }},
       {"strain", [](const HistoryRow &r) { return r.strain; }},
+      {"axial_gauge_strain", [](const HistoryRow &r) { return r.axial_gauge_strain; }},
       {"radial_strain", [](const HistoryRow &r) { return r.radial_strain; }},
       {"kinetic_energy_J", [](const HistoryRow &r) { return r.kinetic_energy; }},
       {"internal_energy_J", [](const HistoryRow &r) { return r.internal_energy; }},
@@ -78,6 +79,7 @@ namespace coupling
       << "  \"peak_force_kN\": " << number(s.peak_force * 1e-3) << ",\n"
       << "  \"strain_at_peak\": " << number(s.strain_at_peak) << ",\n"
       << "  \"youngs_modulus_GPa\": " << number(s.youngs_modulus * 1e-9) << ",\n"
+      << "  \"platen_modulus_GPa\": " << number(s.platen_modulus * 1e-9) << ",\n"
       << "  \"poissons_ratio\": " << (s.poissons_ratio < 0 ? "null" : number(s.poissons_ratio)) << ",\n"
       << "  \"max_displacement_mm\": " << number(s.max_displacement * 1e3) << ",\n"
       << "  \"max_kinetic_to_internal_energy\": " << number(s.max_kinetic_to_internal_energy) << ",\n"

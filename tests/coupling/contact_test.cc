@@ -25,7 +25,7 @@ namespace
       for (int i = 0; i < n; ++i)
       {
         const unsigned a = j * (n + 1) + i;
-        s.faces.push_back({a, a + 1, a + n + 2, a + n + 1}); // counter-clockwise seen from +z
+        s.faces.push_back({{a, a + 1, a + n + 2, a + n + 1}}); // counter-clockwise seen from +z
       }
     return s;
   }

@@ -18,6 +18,7 @@ namespace coupling
     double force_bottom = 0;     ///< reaction on the other platen [N], compression +
     double stress = 0;           ///< UCS/CTCS: force / true area; BTS: 2P/(pi D t) [Pa]
     double strain = 0;           ///< displacement / specimen length (BTS: / diameter) [-]
+    double axial_gauge_strain = 0; ///< UCS/CTCS axial strain over the middle half, compression + [-]
     double radial_strain = 0;    ///< UCS/CTCS lateral strain at mid-height, extension + [-]
     double kinetic_energy = 0;   ///< rock + platens [J]
     double internal_energy = 0;  ///< elastic strain energy, rock + platens [J]
@@ -60,7 +61,8 @@ namespace coupling
     double peak_stress = 0;           ///< [Pa]
     double peak_force = 0;            ///< [N]
     double strain_at_peak = 0;        ///< [-]
-    double youngs_modulus = 0;        ///< secant 40-60 % of peak [Pa]
+    double youngs_modulus = 0;        ///< secant 40-60 % of peak on the gauge strain [Pa]
+    double platen_modulus = 0;        ///< the same on the platen strain (what a frame sees) [Pa]
     double poissons_ratio = -1;       ///< < 0 when not measured
     double max_displacement = 0;      ///< [m]
     double max_kinetic_to_internal_energy = 0;

@@ -1,0 +1,646 @@
+#include "specimen_test.h"
+
+#include <coupling/curve_analysis.h>
+#include <coupling/run_case.h>
+
+#include <fem/platen.h>
+#include <sph/body.h>
+#include <sph/lattice.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace coupling
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    double deg(double a) { return a * pi / 180.0; }
+
+    sph::RockModel rock_model(const std::string &name)
+    {
+      if (name == "elastic")
+        return sph::RockModel::elastic;
+      if (name == "mohr-coulomb")
+        return sph::RockModel::mohr_coulomb;
+      if (name == "mohr-coulomb-cutoff")
+        return sph::RockModel::mohr_coulomb_cutoff;
+      if (name == "hoek-brown")
+        return sph::RockModel::hoek_brown;
+      throw InputError("Rock/Model: unknown model '" + name +
+                       "'; accepted: elastic, mohr-coulomb, mohr-coulomb-cutoff, hoek-brown");
+    }
+
+    sph::MaterialParameters material(const RockParameters &r)
+    {
+      sph::MaterialParameters m;
+      m.model             = rock_model(r.model);
+      m.density           = r.density;
+      m.youngs_modulus    = r.youngs_modulus;
+      m.poissons_ratio    = r.poissons_ratio;
+      m.cohesion          = r.cohesion;
+      m.friction_angle    = deg(r.friction_angle);
+      m.dilation_angle    = deg(r.dilation_angle);
+      m.tensile_strength  = r.tensile_strength;
+      m.hb_sigma_ci       = r.ucs;
+      m.hb_mb             = r.hoek_brown_mi;
+      m.softening_strain  = r.softening_strain;
+      m.residual_fraction = r.residual_fraction;
+      return m;
+    }
+
+    sph::Parameters numerics(const SphParameters &s)
+    {
+      sph::Parameters p;
+      p.spacing = s.spacing;
+      switch (s.form)
+      {
+        case 0: p.form = sph::Formulation::updated_lagrangian; break;
+        case 1: p.form = sph::Formulation::updated_lagrangian_corrected; break;
+        case 7: p.form = sph::Formulation::total_lagrangian; break;
+        case 8: p.form = sph::Formulation::total_lagrangian_corrected; break;
+        default: throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
+      }
+      p.cslh = s.cslh;
+      p.tssfac = s.tssfac;
+      if (s.kernel == "cubic")
+        p.kernel = sph::KernelType::cubic_spline;
+      else if (s.kernel == "wendland")
+        p.kernel = sph::KernelType::wendland_c2;
+      else
+        throw InputError("SPH/Kernel: unknown kernel '" + s.kernel + "'; accepted: cubic, wendland");
+      p.evolve_h  = s.evolve_smoothing_length;
+      p.av_alpha  = s.av_alpha;
+      p.av_beta   = s.av_beta;
+      p.hourglass = s.hourglass;
+      p.n_threads = s.n_threads;
+      return p;
+    }
+
+    /// Smooth start of the platen: 0 at t = 0, 1 from t = ramp on, C1 (sin^2 ramp).
+    double ramp(double t, double t_ramp)
+    {
+      if (t >= t_ramp)
+        return 1.0;
+      if (t <= 0)
+        return 0.0;
+      const double s = std::sin(0.5 * pi * t / t_ramp);
+      return s * s;
+    }
+  } // namespace
+
+  double model_ucs(const RockParameters &r)
+  {
+    if (r.model == "elastic")
+      return 0.0;
+    if (r.model == "hoek-brown")
+      return r.ucs; // s = 1: sigma_1 = sigma_ci at sigma_3 = 0
+    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    return 2.0 * r.cohesion * c / (1.0 - s);
+  }
+
+  double model_tensile_strength(const RockParameters &r)
+  {
+    if (r.model == "elastic")
+      return 0.0;
+    if (r.model == "hoek-brown")
+      return r.hoek_brown_mi > 0 ? r.ucs / r.hoek_brown_mi : 0.0;
+    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    const double mc = 2.0 * r.cohesion * c / (1.0 + s);
+    if (r.model == "mohr-coulomb-cutoff" && r.tensile_strength > 0)
+      return std::min(mc, r.tensile_strength);
+    return mc;
+  }
+
+  LoadingPlan make_loading_plan(const CaseParameters &p)
+  {
+    LoadingPlan plan;
+    const bool bts = p.test == "BTS";
+    const RockParameters &r = p.rock;
+    plan.reference_length = bts ? p.diameter : p.length;
+    const double bar_speed = std::sqrt(r.youngs_modulus / r.density);
+    plan.transit_time      = plan.reference_length / bar_speed;
+    // strain at which the specimen is expected to fail: it sets the rate, not the result
+    double eps_f = p.loading.end_strain;
+    if (r.model != "elastic")
+    {
+      if (bts)
+        // Hondros: the diametral strain at splitting is a few times sigma_t / E for a disc
+        // loaded over a narrow contact; 4 sigma_t / E is the order of the reference study's
+        // 0.014-0.020 mm on 50 mm discs
+        eps_f = 4.0 * model_tensile_strength(r) / r.youngs_modulus;
+      else
+      {
+        const double sn = std::sin(deg(r.friction_angle));
+        const double q  = r.model == "hoek-brown" ? 1.0 : (1 + sn) / (1 - sn);
+        eps_f = (model_ucs(r) + (q - 1.0) * p.confining_pressure) / r.youngs_modulus;
+      }
+      eps_f = std::min(eps_f, p.loading.end_strain);
+    }
+    plan.expected_failure_strain = eps_f;
+    plan.strain_rate = p.loading.strain_rate > 0 ?
+                         p.loading.strain_rate :
+                         eps_f / (p.loading.transit_times * plan.transit_time);
+    plan.platen_speed = plan.strain_rate * plan.reference_length;
+    // the platen reaches its speed smoothly over a few transit times (no impact wave)
+    plan.ramp_time = std::min(4.0 * plan.transit_time, 0.25 * eps_f / plan.strain_rate);
+    if (p.test == "CTCS")
+      plan.confinement_time = 10.0 * plan.transit_time;
+    plan.planned_strain = r.model == "elastic" ? p.loading.end_strain :
+                                                std::min(p.loading.end_strain, 1.5 * eps_f);
+    return plan;
+  }
+
+  SpecimenTest::SpecimenTest(const CaseParameters &parameters)
+    : prm_(parameters)
+  {
+    bts_  = prm_.test == "BTS";
+    ctcs_ = prm_.test == "CTCS";
+    if (!bts_ && !ctcs_ && prm_.test != "UCS")
+      throw InputError("Test/Type: unknown test '" + prm_.test + "'; accepted: UCS, BTS, CTCS");
+    const double smallest = std::min(prm_.diameter, prm_.length);
+    if (!(prm_.sph.spacing > 0) || prm_.sph.spacing > smallest / 6.0)
+      throw InputError("SPH/Particle spacing: " + std::to_string(prm_.sph.spacing) +
+                       " m must be positive and at most a sixth of the smallest specimen size (" +
+                       std::to_string(smallest / 6.0) + " m)");
+    plan_ = make_loading_plan(prm_);
+    build_specimen();
+    build_platens();
+    choose_time_step();
+    select_gauges();
+  }
+
+  SpecimenTest::~SpecimenTest() = default;
+
+  void SpecimenTest::build_specimen()
+  {
+    const double dx = prm_.sph.spacing;
+    const sph::Lattice<3> lattice = bts_ ? sph::make_disc<3>(prm_.diameter, prm_.length, dx) :
+                                           sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
+    true_area_    = lattice.true_section_area;
+    lattice_area_ = lattice.lattice_section_area;
+    try
+    {
+      body_ = std::make_unique<sph::Body<3>>(numerics(prm_.sph), material(prm_.rock),
+                                             lattice.positions, lattice.volumes);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(e.what());
+    }
+    const std::size_t n = body_->n_particles();
+    force_on_particles_.assign(3 * n, 0.0);
+    domain_size_ = 3.0 * std::max(prm_.diameter, prm_.length);
+  }
+
+  void SpecimenTest::build_platens()
+  {
+    const double dx = prm_.sph.spacing;
+    fem::Parameters fp;
+    if (prm_.platens.model == "rigid")
+      fp.model = fem::PlatenModel::rigid;
+    else if (prm_.platens.model == "elastic")
+      fp.model = fem::PlatenModel::elastic;
+    else
+      throw InputError("Platens/Model: unknown model '" + prm_.platens.model +
+                       "'; accepted: rigid, elastic");
+    fp.youngs_modulus = prm_.platens.youngs_modulus;
+    fp.poissons_ratio = prm_.platens.poissons_ratio;
+    fp.density        = prm_.platens.density;
+    fp.element_size   = prm_.platens.element_size > 0 ? prm_.platens.element_size : 2.0 * dx;
+
+    fem::PlatenGeometry g;
+    g.thickness = prm_.platens.thickness;
+    if (bts_)
+    {
+      g.shape  = fem::PlatenShape::box;
+      g.size_x = prm_.platens.diameter > 0 ? prm_.platens.diameter : 0.6 * prm_.diameter;
+      g.size_y = prm_.length + 4.0 * dx;
+    }
+    else
+    {
+      g.shape    = fem::PlatenShape::cylinder;
+      g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : prm_.diameter + 4.0 * dx;
+    }
+    const double top_z = bts_ ? prm_.diameter : prm_.length;
+    try
+    {
+      g.side      = fem::PlatenSide::above;
+      g.contact_z = top_z;
+      top_        = std::make_unique<fem::Platen>(g, fp);
+      g.side      = fem::PlatenSide::below;
+      g.contact_z = 0.0;
+      bottom_     = std::make_unique<fem::Platen>(g, fp);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(std::string("Platens: ") + e.what());
+    }
+    top_->set_loaded_face_velocity([this](double t) { return top_velocity(t); });
+    force_on_top_.assign(3 * top_->n_contact_nodes(), 0.0);
+    force_on_bottom_.assign(3 * bottom_->n_contact_nodes(), 0.0);
+  }
+
+  double SpecimenTest::top_velocity(double t) const
+  {
+    if (ctcs_ && t < plan_.confinement_time)
+    {
+      // follow the hydrostatic compression of the rock while the pressure ramps up, so that the
+      // axial stress stays equal to the confining pressure: d(eps)/dt = (1 - 2 nu)/E dp/dt
+      const double dp_dt = prm_.confining_pressure / plan_.confinement_time;
+      const double rate  = (1.0 - 2.0 * prm_.rock.poissons_ratio) / prm_.rock.youngs_modulus * dp_dt;
+      return -rate * prm_.length;
+    }
+    const double t_load = t - plan_.confinement_time;
+    return -plan_.platen_speed * ramp(t_load, plan_.ramp_time);
+  }
+
+  void SpecimenTest::choose_time_step()
+  {
+    const double dt_sph = body_->stable_time_step();
+    dt_ = dt_sph;
+    const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
+    // the platens sub-cycle when their stable step is the smaller one; the contact force is held
+    // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
+    n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
+
+    // Penalty stiffness: a fraction of the central-difference bound 4 m_eff / dt^2 of the lightest
+    // particle against the lightest contact node (rigid: the particle alone). With the fraction
+    // s < 1 the contact alone is stable at dt / sqrt(s) > dt, i.e. the time-step limit counts it.
+    const auto &m = body_->masses();
+    const double m_particle = *std::min_element(m.begin(), m.end());
+    double m_node = 0.0;
+    if (!top_->is_rigid())
+    {
+      const auto a = top_->contact_masses(), b = bottom_->contact_masses();
+      m_node = std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
+    }
+    ContactParameters cp;
+    cp.stiffness = prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+    cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
+    cp.radius = 0.5 * prm_.sph.spacing;
+    contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+  }
+
+  void SpecimenTest::select_gauges()
+  {
+    const auto &x0 = body_->reference_positions();
+    const double dx = prm_.sph.spacing;
+    if (bts_)
+      return;
+    // axial gauges: the particle layers nearest to L/4 and 3L/4 (middle half of the specimen,
+    // away from the end effects, as strain gauges on a specimen); radial: the outermost ring at
+    // mid-height
+    auto nearest_layer = [&](double z) {
+      double best = 1e300;
+      for (const auto &p : x0)
+        best = std::min(best, std::abs(p[2] - z));
+      std::vector<unsigned int> set;
+      for (unsigned int i = 0; i < x0.size(); ++i)
+        if (std::abs(std::abs(x0[i][2] - z) - best) < 1e-9 * prm_.length && std::abs(x0[i][2] - z) <= best + 1e-12)
+          set.push_back(i);
+      return set;
+    };
+    gauge_low_  = nearest_layer(0.25 * prm_.length);
+    gauge_high_ = nearest_layer(0.75 * prm_.length);
+    gauge_length0_ = x0[gauge_high_[0]][2] - x0[gauge_low_[0]][2];
+    const auto mid = nearest_layer(0.5 * prm_.length);
+    double r_max = 0;
+    for (unsigned int i : mid)
+      r_max = std::max(r_max, std::hypot(x0[i][0], x0[i][1]));
+    for (unsigned int i : mid)
+      if (std::hypot(x0[i][0], x0[i][1]) > r_max - 0.75 * dx)
+        gauge_ring_.push_back(i);
+  }
+
+  void SpecimenTest::step()
+  {
+    body_->compute_forces();
+    if (ctcs_)
+      body_->set_surface_pressure(prm_.confining_pressure *
+                                  std::min(1.0, time_ / plan_.confinement_time));
+
+    // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
+    auto surface = [](const fem::Platen &pl) {
+      ContactSurface s;
+      s.position = pl.contact_positions();
+      s.velocity = pl.contact_velocities();
+      s.mass     = pl.contact_masses();
+      if (pl.is_rigid())
+        std::fill(s.mass.begin(), s.mass.end(), 0.0);
+      const auto &f = pl.contact_faces();
+      s.faces.resize(f.size() / 4);
+      for (std::size_t q = 0; q < s.faces.size(); ++q)
+        s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+      return s;
+    };
+    const ContactSurface s_top = surface(*top_), s_bottom = surface(*bottom_);
+    const auto &x = body_->positions();
+    const auto &v = body_->velocities();
+    const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
+                                     body_->n_particles()};
+    std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
+    std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
+    std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);
+    contact_top_->apply(particles, s_top, dt_, force_on_particles_, force_on_top_);
+    contact_bottom_->apply(particles, s_bottom, dt_, force_on_particles_, force_on_bottom_);
+
+    // SPH <- contact forces; FEM <- their reactions (the sums cancel to round-off)
+    auto &f_ext = body_->external_forces();
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+      for (int d = 0; d < 3; ++d)
+        f_ext[i][d] += force_on_particles_[3 * i + d];
+    body_->integrate(dt_);
+
+    // work of the confining pressure over this step, with the half-step velocities
+    if (ctcs_)
+    {
+      const auto &fp = body_->pressure_forces();
+      double w = 0;
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        w += fp[i].dot(v[i]);
+      pressure_work_ += w * dt_;
+    }
+
+    const double h = dt_ / n_substeps_;
+    for (int k = 0; k < n_substeps_; ++k)
+    {
+      top_->add_contact_forces(force_on_top_);
+      bottom_->add_contact_forces(force_on_bottom_);
+      const double t = time_ + k * h;
+      top_->step(t, h);
+      bottom_->step(t, h);
+      // frame work: load-cell reaction times the loaded face's prescribed velocity (bottom fixed)
+      frame_work_ += top_->reaction_force() * top_velocity(t + 0.5 * h) * h;
+    }
+    time_ += dt_;
+    ++n_steps_;
+  }
+
+  HistoryRow SpecimenTest::measure() const
+  {
+    HistoryRow r;
+    r.time         = time_;
+    r.displacement = bottom_->loaded_face_displacement() - top_->loaded_face_displacement();
+    r.force        = top_->compressive_force();
+    r.force_bottom = bottom_->compressive_force();
+    const double load = 0.5 * (r.force + r.force_bottom);
+    if (bts_)
+    {
+      r.stress = 2.0 * load / (pi * prm_.diameter * prm_.length);
+      r.strain = r.displacement / prm_.diameter;
+    }
+    else
+    {
+      // CTCS: the pressure acts on the ends too, so the frame carries sigma_1 - p (a balanced
+      // piston); the axial stress is the load over the true area plus the pressure
+      const double p = ctcs_ ? body_->surface_pressure() : 0.0;
+      r.stress = load / true_area_ + p;
+      r.strain = r.displacement / prm_.length;
+    }
+    const auto &x = body_->positions();
+    const auto &x0 = body_->reference_positions();
+    if (!bts_)
+    {
+      double z_lo = 0, z_hi = 0;
+      for (unsigned int i : gauge_low_)
+        z_lo += x[i][2];
+      for (unsigned int i : gauge_high_)
+        z_hi += x[i][2];
+      z_lo /= gauge_low_.size();
+      z_hi /= gauge_high_.size();
+      r.axial_gauge_strain = 1.0 - (z_hi - z_lo) / gauge_length0_;
+      double er = 0;
+      for (unsigned int i : gauge_ring_)
+        er += std::hypot(x[i][0], x[i][1]) / std::hypot(x0[i][0], x0[i][1]) - 1.0;
+      r.radial_strain = er / gauge_ring_.size();
+    }
+    const sph::Energies e = body_->energies();
+    const double pen = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
+    r.kinetic_energy  = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
+    r.internal_energy = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
+    r.dissipated_energy = e.dissipated() + contact_top_->friction_dissipation() +
+                          contact_bottom_->friction_dissipation() +
+                          top_->damping_dissipation() + bottom_->damping_dissipation();
+    r.external_work = frame_work_ + pressure_work_;
+    double failed = 0;
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+      failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
+    r.n_failed = failed;
+    return r;
+  }
+
+  void SpecimenTest::check_stability() const
+  {
+    const auto &x = body_->positions();
+    const auto &v = body_->velocities();
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+    {
+      const bool finite = std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]);
+      const bool inside = std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
+                          std::abs(x[i][2]) < domain_size_;
+      if (!finite || !inside)
+      {
+        std::ostringstream os;
+        os << "step " << n_steps_ << ", t = " << time_ << " s: particle " << i
+           << (finite ? " left the domain" : " has a non-finite position or velocity") << " at ("
+           << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
+           << ") m; likely cause: a time step above the stable limit (SPH/TSSFAC, "
+              "Platens/Contact stiffness scale) or a loading rate far above quasi-static";
+        throw InstabilityError(os.str());
+      }
+    }
+  }
+
+  ParticleSnapshot SpecimenTest::particle_snapshot() const
+  {
+    ParticleSnapshot s;
+    const unsigned int n = body_->n_particles();
+    s.n = n;
+    const auto &x = body_->positions();
+    const auto &v = body_->velocities();
+    const auto &x0 = body_->reference_positions();
+    s.position.reserve(3 * n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d)
+      {
+        s.position.push_back(x[i][d]);
+        s.velocity.push_back(v[i][d]);
+        s.displacement.push_back(x[i][d] - x0[i][d]);
+      }
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const auto &t = body_->stress3(i);
+      s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
+      s.plastic_strain.push_back(body_->plastic_strain(i));
+      s.damage.push_back(body_->damage(i));
+    }
+    return s;
+  }
+
+  std::vector<MeshSnapshot> SpecimenTest::mesh_snapshots() const
+  {
+    std::vector<MeshSnapshot> out;
+    for (const auto &[name, platen] : {std::pair{"platen_top", top_.get()}, std::pair{"platen_bottom", bottom_.get()}})
+    {
+      const fem::MeshSnapshot f = platen->mesh_snapshot();
+      MeshSnapshot m;
+      m.name         = name;
+      m.position     = f.position;
+      m.displacement = f.displacement;
+      m.hexahedra    = f.hexahedra;
+      m.von_mises    = f.von_mises;
+      out.push_back(std::move(m));
+    }
+    return out;
+  }
+
+  Summary SpecimenTest::run(RunObserver &observer)
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    const double t_plan = plan_.confinement_time + plan_.ramp_time * 0.5 +
+                          plan_.planned_strain / plan_.strain_rate;
+    const double t_end = plan_.confinement_time + plan_.ramp_time * 0.5 +
+                         prm_.loading.end_strain / plan_.strain_rate;
+    const double row_interval  = t_plan / std::max(1, prm_.output.n_history_rows);
+    const double snap_interval = t_plan / std::max(1, prm_.output.n_snapshots);
+    double next_row = 0, next_snap = 0;
+
+    std::vector<HistoryRow> rows;
+    double peak_force = 0;
+    bool armed = false;
+    bool stop = false;
+    std::string stop_reason = "end strain";
+    while (!stop)
+    {
+      step();
+      if (n_steps_ % 50 == 0)
+        check_stability();
+      const bool last = time_ >= t_end;
+      if (time_ >= next_row || last)
+      {
+        check_stability();
+        const HistoryRow r = measure();
+        if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
+          throw InstabilityError("step " + std::to_string(n_steps_) +
+                                 ": non-finite platen force or energy; likely cause: a time step "
+                                 "above the stable limit");
+        rows.push_back(r);
+        observer.history(r);
+        next_row += row_interval;
+        const bool loading = time_ > plan_.confinement_time;
+        // the load the specimen carries: mean of both load cells (the stress wave that crosses
+        // the specimen at the start makes each one oscillate on its own)
+        const double load = 0.5 * (r.force + r.force_bottom);
+        peak_force = loading ? std::max(peak_force, load) : peak_force;
+        // the failure criterion is armed once the specimen yields somewhere or has passed half of
+        // its expected failure strain, so that the start-up transient cannot end the run
+        armed = armed || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
+        // the load has fallen past the post-peak drop: the specimen has failed
+        if (loading && armed && peak_force > 0 &&
+            load < (1.0 - prm_.loading.post_peak_drop) * peak_force)
+        {
+          stop = true;
+          stop_reason = "post-peak drop";
+        }
+        if (last)
+          stop = true;
+      }
+      if (time_ >= next_snap || stop)
+      {
+        observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
+        next_snap += snap_interval;
+      }
+      if (n_steps_ % 20 == 0 || stop)
+        observer.progress(n_steps_, time_, std::min(1.0, time_ / t_plan));
+    }
+
+    // ---- what the laboratory reads off the curves
+    Summary s;
+    s.test        = prm_.test;
+    s.n_particles = body_->n_particles();
+    s.n_steps     = n_steps_;
+    s.true_area   = true_area_;
+    s.lattice_area = lattice_area_;
+    s.strain_rate = plan_.strain_rate;
+    s.time_step   = dt_;
+    s.stop_reason = stop_reason;
+    std::vector<double> stress, strain, gauge, radial;
+    for (const auto &r : rows)
+    {
+      // the axial phase only (CTCS: after the confinement ramp)
+      if (r.time <= plan_.confinement_time)
+        continue;
+      stress.push_back(r.stress);
+      strain.push_back(r.strain);
+      gauge.push_back(r.axial_gauge_strain);
+      radial.push_back(r.radial_strain);
+    }
+    if (!stress.empty())
+    {
+      const std::size_t k = peak_index(stress);
+      s.peak_stress    = stress[k];
+      s.strain_at_peak = strain[k];
+      double f_peak = 0;
+      for (const auto &r : rows)
+        f_peak = std::max(f_peak, 0.5 * (r.force + r.force_bottom));
+      s.peak_force = f_peak;
+      if (!bts_)
+      {
+        // deviatoric stress for the moduli: CTCS loads from the hydrostatic state
+        std::vector<double> dev(stress);
+        const double p = ctcs_ ? prm_.confining_pressure : 0.0;
+        std::vector<double> g0(gauge), r0(radial);
+        for (std::size_t i = 0; i < dev.size(); ++i)
+        {
+          dev[i] -= p;
+          g0[i] -= gauge.front();
+          r0[i] -= radial.front();
+        }
+        s.youngs_modulus = secant_modulus(g0, dev);
+        s.poissons_ratio = secant_poissons_ratio(g0, r0, dev);
+        s.platen_modulus = secant_modulus(strain, dev);
+      }
+      else
+        s.platen_modulus = secant_modulus(strain, stress);
+    }
+    double max_ratio = 0, max_imbalance = 0;
+    for (const auto &r : rows)
+    {
+      if (r.time <= plan_.confinement_time || s.peak_force <= 0)
+        continue;
+      const double load = 0.5 * (r.force + r.force_bottom);
+      // judged once the specimen carries a tenth of its peak: before that both energies are tiny
+      if (load < 0.1 * s.peak_force)
+        continue;
+      if (r.internal_energy > 0)
+        max_ratio = std::max(max_ratio, r.kinetic_energy / r.internal_energy);
+      max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
+    }
+    s.max_kinetic_to_internal_energy = max_ratio;
+    s.max_force_imbalance = max_imbalance;
+    s.max_displacement = 0;
+    for (const auto &r : rows)
+      s.max_displacement = std::max(s.max_displacement, r.displacement);
+    if (!rows.empty())
+    {
+      const auto &r = rows.back();
+      const double stored = r.kinetic_energy + r.internal_energy + r.dissipated_energy;
+      s.energy_balance_error =
+        r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
+    }
+    s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
+                     max_imbalance <= prm_.loading.max_force_imbalance;
+    s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return s;
+  }
+
+  Summary run_case(const CaseParameters &parameters, RunObserver &observer)
+  {
+    SpecimenTest test(parameters);
+    return test.run(observer);
+  }
+} // namespace coupling

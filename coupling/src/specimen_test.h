@@ -1,0 +1,83 @@
+#pragma once
+/// @file
+/// The coupled laboratory test: an SPH rock specimen between two platens (FEM, rigid or elastic),
+/// penalty contact with friction, a loading path, and the measurements a laboratory makes.
+/// Internal to the coupling library; run_case() is the public entry.
+
+#include <coupling/case_parameters.h>
+#include <coupling/contact.h>
+#include <coupling/run_output.h>
+
+#include <memory>
+#include <vector>
+
+namespace sph
+{
+  template <int dim>
+  class Body;
+}
+namespace fem
+{
+  class Platen;
+}
+
+namespace coupling
+{
+  /// Quantities derived from the case before the run: the loading path and the stop criteria.
+  struct LoadingPlan
+  {
+    double reference_length = 0;   ///< specimen length (UCS/CTCS) or diameter (BTS) [m]
+    double transit_time = 0;       ///< reference_length / sqrt(E/rho) [s]
+    double expected_failure_strain = 0; ///< from the strength model, for the rate [-]
+    double strain_rate = 0;        ///< nominal axial strain rate [1/s]
+    double platen_speed = 0;       ///< final speed of the top platen [m/s]
+    double ramp_time = 0;          ///< smooth velocity ramp [s]
+    double confinement_time = 0;   ///< CTCS: pressure ramp before axial loading [s]
+    double planned_strain = 0;     ///< strain at which the planned path ends [-]
+  };
+
+  /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
+  double model_ucs(const RockParameters &rock);
+  double model_tensile_strength(const RockParameters &rock);
+
+  /// The loading plan of a case (rate derived from the wave transit time unless given).
+  LoadingPlan make_loading_plan(const CaseParameters &p);
+
+  class SpecimenTest
+  {
+  public:
+    explicit SpecimenTest(const CaseParameters &parameters);
+    ~SpecimenTest();
+    Summary run(RunObserver &observer);
+
+  private:
+    void build_specimen();
+    void build_platens();
+    void choose_time_step();
+    void select_gauges();
+    double top_velocity(double t) const;
+    void step();
+    HistoryRow measure() const;
+    void check_stability() const;
+    ParticleSnapshot particle_snapshot() const;
+    std::vector<MeshSnapshot> mesh_snapshots() const;
+
+    CaseParameters prm_;
+    LoadingPlan plan_;
+    bool bts_ = false, ctcs_ = false;
+    std::unique_ptr<sph::Body<3>> body_;
+    std::unique_ptr<fem::Platen> top_, bottom_;
+    std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
+    double true_area_ = 0, lattice_area_ = 0;
+    double dt_ = 0;
+    int n_substeps_ = 1;
+    double time_ = 0;
+    std::size_t n_steps_ = 0;
+    double frame_work_ = 0, pressure_work_ = 0;
+    double domain_size_ = 0;
+    // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
+    std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
+    double gauge_length0_ = 0;
+    std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
+  };
+} // namespace coupling
