@@ -89,7 +89,7 @@ namespace coupling
       {"Platens", "Thickness", Kind::real, "0.02", "", "along the loading axis [m]"},
       {"Platens", "Diameter", Kind::real, "0", "", "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen"},
       {"Platens", "Element size", Kind::real, "0", "", "FEM element size [m]; 0 = from the particle spacing"},
-      {"Platens", "Contact stiffness scale", Kind::real, "0.5", "", "penalty stiffness / its stability bound [-]"},
+      {"Platens", "Contact stiffness scale", Kind::real, "0.1", "", "penalty stiffness / its stability bound [-]"},
 
       {"Loading", "Strain rate", Kind::real, "0", "", "nominal axial strain rate [1/s]; 0 = from the wave transit time"},
       {"Loading", "Transit times", Kind::real, "40", "", "derived rate: ramp to peak over this many wave transits [-]"},

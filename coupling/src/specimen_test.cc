@@ -601,7 +601,12 @@ namespace coupling
           r0[i] -= radial.front();
         }
         s.youngs_modulus = secant_modulus(g0, dev);
-        s.poissons_ratio = secant_poissons_ratio(g0, r0, dev);
+        // the gauge strain is compression +, the radial one extension +: nu = -d(lat)/d(ax)
+        // with both extension +
+        std::vector<double> ax(g0);
+        for (double &e : ax)
+          e = -e;
+        s.poissons_ratio = secant_poissons_ratio(ax, r0, dev);
         s.platen_modulus = secant_modulus(strain, dev);
       }
       else

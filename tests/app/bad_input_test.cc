@@ -360,9 +360,8 @@ TEST(Calibrate, CommandPrintsTable4)
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 11);
 }
 
-// The output files of a real run. Disabled until the coupled drivers (run_case) land; then
-// remove DISABLED_ and it checks the default UCS case end to end (coarse spacing to stay quick).
-TEST(AppRun, DISABLED_DefaultUcsWritesEveryOutput)
+// The output files of a real run: the default UCS case end to end (coarse spacing to stay quick).
+TEST(AppRun, DefaultUcsWritesEveryOutput)
 {
   Sandbox box;
   const Result r = run_cosim(box, {"run", ucs_case, "--quiet", "--set", "SPH/Particle spacing=0.005"});

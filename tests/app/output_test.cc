@@ -67,7 +67,7 @@ TEST(Output, HistoryCsvColumnsAndUnits)
   coupling::write_history_csv((dir.path / "h.csv").string(), {row, row});
   const std::string text = read(dir.path / "h.csv");
   EXPECT_EQ(text.substr(0, text.find('\n')),
-            "time_s,displacement_mm,force_kN,force_bottom_kN,stress_MPa,strain,radial_strain,kinetic_energy_J,"
+            "time_s,displacement_mm,force_kN,force_bottom_kN,stress_MPa,strain,axial_gauge_strain,radial_strain,kinetic_energy_J,"
             "internal_energy_J,dissipated_energy_J,external_work_J,n_failed");
   EXPECT_NE(text.find("\n0.001,0.2,100,0,50,"), std::string::npos) << text;
 }

@@ -51,7 +51,7 @@ namespace coupling
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     double element_size = 0.0;    ///< FEM element size [m]; 0 = from the particle spacing
-    double contact_stiffness_scale = 0.5; ///< penalty stiffness / its stability bound [-]
+    double contact_stiffness_scale = 0.1; ///< penalty stiffness / its stability bound [-]; 0.5 rings
   };
 
   /// Loading path. A strain rate of 0 derives the rate from the specimen's wave transit time.
