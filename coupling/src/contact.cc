@@ -12,8 +12,14 @@ namespace coupling
   {
     using V3 = std::array<double, 3>;
 
-    inline V3 sub(const V3 &a, const V3 &b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-    inline double dot(const V3 &a, const V3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+    inline V3 sub(const V3 &a, const V3 &b)
+    {
+      return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    }
+    inline double dot(const V3 &a, const V3 &b)
+    {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    }
     inline V3 cross(const V3 &a, const V3 &b)
     {
       return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -23,11 +29,12 @@ namespace coupling
       return {s.position[3 * k], s.position[3 * k + 1], s.position[3 * k + 2]};
     }
 
-    /// Bilinear shape functions of a quad with nodes counter-clockwise at (-1,-1),(1,-1),(1,1),(-1,1).
+    /// Bilinear shape functions of a quad with nodes counter-clockwise at
+    /// (-1,-1),(1,-1),(1,1),(-1,1).
     inline std::array<double, 4> shape(double xi, double eta)
     {
-      return {0.25 * (1 - xi) * (1 - eta), 0.25 * (1 + xi) * (1 - eta),
-              0.25 * (1 + xi) * (1 + eta), 0.25 * (1 - xi) * (1 + eta)};
+      return {0.25 * (1 - xi) * (1 - eta), 0.25 * (1 + xi) * (1 - eta), 0.25 * (1 + xi) * (1 + eta),
+              0.25 * (1 - xi) * (1 + eta)};
     }
 
     /// How far outside the reference square a projection may fall and still count: particles on a
@@ -43,10 +50,10 @@ namespace coupling
   }
 
   PenaltyContact::PenaltyContact(const ContactParameters &parameters, std::size_t n_particles)
-    : prm_(parameters)
-    , friction_(n_particles)
-    , hits_(n_particles)
-    , particle_force_(n_particles)
+      : prm_(parameters)
+      , friction_(n_particles)
+      , hits_(n_particles)
+      , particle_force_(n_particles)
   {}
 
   void PenaltyContact::build_face_grid(const ContactSurface &s)
@@ -122,7 +129,7 @@ namespace coupling
     const V3 p{x[0], x[1], x[2]};
     for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q)
     {
-      const int f = cell_faces_[q];
+      const int f    = cell_faces_[q];
       const auto &fn = s.faces[f];
       const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
       // Newton iterations for the closest point x(xi, eta) of the bilinear face.
@@ -137,7 +144,7 @@ namespace coupling
           dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
           deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
         }
-        const V3 r = sub(p, xs);
+        const V3 r     = sub(p, xs);
         const double a = dot(dxi, dxi), b = dot(dxi, deta), e = dot(deta, deta);
         const double g1 = dot(dxi, r), g2 = dot(deta, r);
         const double det = a * e - b * b;
@@ -151,8 +158,8 @@ namespace coupling
       }
       if (std::abs(xi) > 1 + edge_tolerance || std::abs(eta) > 1 + edge_tolerance)
         continue;
-      xi  = std::clamp(xi, -1.0, 1.0);
-      eta = std::clamp(eta, -1.0, 1.0);
+      xi           = std::clamp(xi, -1.0, 1.0);
+      eta          = std::clamp(eta, -1.0, 1.0);
       const auto N = shape(xi, eta);
       for (int d = 0; d < 3; ++d)
       {
@@ -160,7 +167,7 @@ namespace coupling
         dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
         deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
       }
-      V3 n = cross(dxi, deta);
+      V3 n            = cross(dxi, deta);
       const double nn = std::sqrt(dot(n, n));
       if (!(nn > 0))
         continue;
@@ -188,9 +195,9 @@ namespace coupling
                                     std::vector<double> &force_on_nodes)
   {
     build_face_grid(s);
-    const double k  = prm_.stiffness;
+    const double k    = prm_.stiffness;
     const double mu_s = prm_.friction_static, mu_d = prm_.friction_dynamic;
-    const long n = static_cast<long>(pt.n);
+    const long n  = static_cast<long>(pt.n);
     double fn_sum = 0, energy = 0, dissipated = 0;
     std::size_t n_contact = 0, n_slide = 0;
 
@@ -198,12 +205,12 @@ namespace coupling
 #pragma omp parallel for schedule(static) reduction(+ : fn_sum, energy, dissipated, n_contact, n_slide)
     for (long i = 0; i < n; ++i)
     {
-      Hit hit = find_face(pt.position + 3 * i, s);
+      Hit hit           = find_face(pt.position + 3 * i, s);
       FrictionState &fr = friction_[i];
       std::array<double, 3> f{0, 0, 0};
       if (hit.face < 0 || hit.gap >= 0)
       {
-        fr = FrictionState{};
+        fr       = FrictionState{};
         hit.face = -1;
       }
       else
@@ -226,7 +233,7 @@ namespace coupling
         if (mu_s > 0 || mu_d > 0)
         {
           // elastic stick spring (regularised stick), rotated into the current tangent plane
-          V3 trial = fr.tangential_force;
+          V3 trial        = fr.tangential_force;
           const double tn = dot(trial, nrm);
           for (int d = 0; d < 3; ++d)
             trial[d] += -tn * nrm[d] - k * vt[d] * dt;
@@ -272,7 +279,7 @@ namespace coupling
           force_on_nodes[3 * node_id + d] -= hit.weight[a] * f[d];
       }
     }
-    normal_force_ = fn_sum;
+    normal_force_   = fn_sum;
     penalty_energy_ = energy;
     friction_dissipation_ += dissipated;
     n_sliding_ = n_slide;

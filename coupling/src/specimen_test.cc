@@ -17,7 +17,10 @@ namespace coupling
   namespace
   {
     constexpr double pi = 3.14159265358979323846;
-    double deg(double a) { return a * pi / 180.0; }
+    double deg(double a)
+    {
+      return a * pi / 180.0;
+    }
 
     sph::RockModel rock_model(const std::string &name)
     {
@@ -57,20 +60,30 @@ namespace coupling
       p.spacing = s.spacing;
       switch (s.form)
       {
-        case 0: p.form = sph::Formulation::updated_lagrangian; break;
-        case 1: p.form = sph::Formulation::updated_lagrangian_corrected; break;
-        case 7: p.form = sph::Formulation::total_lagrangian; break;
-        case 8: p.form = sph::Formulation::total_lagrangian_corrected; break;
-        default: throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
+        case 0:
+          p.form = sph::Formulation::updated_lagrangian;
+          break;
+        case 1:
+          p.form = sph::Formulation::updated_lagrangian_corrected;
+          break;
+        case 7:
+          p.form = sph::Formulation::total_lagrangian;
+          break;
+        case 8:
+          p.form = sph::Formulation::total_lagrangian_corrected;
+          break;
+        default:
+          throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
       }
-      p.cslh = s.cslh;
+      p.cslh   = s.cslh;
       p.tssfac = s.tssfac;
       if (s.kernel == "cubic")
         p.kernel = sph::KernelType::cubic_spline;
       else if (s.kernel == "wendland")
         p.kernel = sph::KernelType::wendland_c2;
       else
-        throw InputError("SPH/Kernel: unknown kernel '" + s.kernel + "'; accepted: cubic, wendland");
+        throw InputError("SPH/Kernel: unknown kernel '" + s.kernel +
+                         "'; accepted: cubic, wendland");
       p.evolve_h  = s.evolve_smoothing_length;
       p.av_alpha  = s.av_alpha;
       p.av_beta   = s.av_beta;
@@ -117,11 +130,11 @@ namespace coupling
   LoadingPlan make_loading_plan(const CaseParameters &p)
   {
     LoadingPlan plan;
-    const bool bts = p.test == "BTS";
+    const bool bts          = p.test == "BTS";
     const RockParameters &r = p.rock;
-    plan.reference_length = bts ? p.diameter : p.length;
-    const double bar_speed = std::sqrt(r.youngs_modulus / r.density);
-    plan.transit_time      = plan.reference_length / bar_speed;
+    plan.reference_length   = bts ? p.diameter : p.length;
+    const double bar_speed  = std::sqrt(r.youngs_modulus / r.density);
+    plan.transit_time       = plan.reference_length / bar_speed;
     // strain at which the specimen is expected to fail: it sets the rate, not the result
     double eps_f = p.loading.end_strain;
     if (r.model != "elastic")
@@ -135,26 +148,26 @@ namespace coupling
       {
         const double sn = std::sin(deg(r.friction_angle));
         const double q  = r.model == "hoek-brown" ? 1.0 : (1 + sn) / (1 - sn);
-        eps_f = (model_ucs(r) + (q - 1.0) * p.confining_pressure) / r.youngs_modulus;
+        eps_f           = (model_ucs(r) + (q - 1.0) * p.confining_pressure) / r.youngs_modulus;
       }
       eps_f = std::min(eps_f, p.loading.end_strain);
     }
     plan.expected_failure_strain = eps_f;
-    plan.strain_rate = p.loading.strain_rate > 0 ?
-                         p.loading.strain_rate :
-                         eps_f / (p.loading.transit_times * plan.transit_time);
-    plan.platen_speed = plan.strain_rate * plan.reference_length;
+    plan.strain_rate             = p.loading.strain_rate > 0
+                                     ? p.loading.strain_rate
+                                     : eps_f / (p.loading.transit_times * plan.transit_time);
+    plan.platen_speed            = plan.strain_rate * plan.reference_length;
     // the platen reaches its speed smoothly over a few transit times (no impact wave)
     plan.ramp_time = std::min(4.0 * plan.transit_time, 0.25 * eps_f / plan.strain_rate);
     if (p.test == "CTCS")
       plan.confinement_time = 10.0 * plan.transit_time;
-    plan.planned_strain = r.model == "elastic" ? p.loading.end_strain :
-                                                std::min(p.loading.end_strain, 1.5 * eps_f);
+    plan.planned_strain =
+      r.model == "elastic" ? p.loading.end_strain : std::min(p.loading.end_strain, 1.5 * eps_f);
     return plan;
   }
 
   SpecimenTest::SpecimenTest(const CaseParameters &parameters)
-    : prm_(parameters)
+      : prm_(parameters)
   {
     bts_  = prm_.test == "BTS";
     ctcs_ = prm_.test == "CTCS";
@@ -176,11 +189,11 @@ namespace coupling
 
   void SpecimenTest::build_specimen()
   {
-    const double dx = prm_.sph.spacing;
-    const sph::Lattice<3> lattice = bts_ ? sph::make_disc<3>(prm_.diameter, prm_.length, dx) :
-                                           sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
-    true_area_    = lattice.true_section_area;
-    lattice_area_ = lattice.lattice_section_area;
+    const double dx               = prm_.sph.spacing;
+    const sph::Lattice<3> lattice = bts_ ? sph::make_disc<3>(prm_.diameter, prm_.length, dx)
+                                         : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
+    true_area_                    = lattice.true_section_area;
+    lattice_area_                 = lattice.lattice_section_area;
     try
     {
       body_ = std::make_unique<sph::Body<3>>(numerics(prm_.sph), material(prm_.rock),
@@ -250,7 +263,7 @@ namespace coupling
       // follow the hydrostatic compression of the rock while the pressure ramps up, so that the
       // axial stress stays equal to the confining pressure: d(eps)/dt = (1 - 2 nu)/E dp/dt
       const double dp_dt = prm_.confining_pressure / plan_.confinement_time;
-      const double rate  = (1.0 - 2.0 * prm_.rock.poissons_ratio) / prm_.rock.youngs_modulus * dp_dt;
+      const double rate = (1.0 - 2.0 * prm_.rock.poissons_ratio) / prm_.rock.youngs_modulus * dp_dt;
       return -rate * prm_.length;
     }
     const double t_load = t - plan_.confinement_time;
@@ -260,7 +273,7 @@ namespace coupling
   void SpecimenTest::choose_time_step()
   {
     const double dt_sph = body_->stable_time_step();
-    dt_ = dt_sph;
+    dt_                 = dt_sph;
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
@@ -269,25 +282,27 @@ namespace coupling
     // Penalty stiffness: a fraction of the central-difference bound 4 m_eff / dt^2 of the lightest
     // particle against the lightest contact node (rigid: the particle alone). With the fraction
     // s < 1 the contact alone is stable at dt / sqrt(s) > dt, i.e. the time-step limit counts it.
-    const auto &m = body_->masses();
+    const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
-    double m_node = 0.0;
+    double m_node           = 0.0;
     if (!top_->is_rigid())
     {
       const auto a = top_->contact_masses(), b = bottom_->contact_masses();
-      m_node = std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
+      m_node =
+        std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
     }
     ContactParameters cp;
-    cp.stiffness = prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+    cp.stiffness =
+      prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
-    cp.radius = 0.5 * prm_.sph.spacing;
+    cp.radius                                = 0.5 * prm_.sph.spacing;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
   }
 
   void SpecimenTest::select_gauges()
   {
-    const auto &x0 = body_->reference_positions();
+    const auto &x0  = body_->reference_positions();
     const double dx = prm_.sph.spacing;
     if (bts_)
       return;
@@ -300,15 +315,16 @@ namespace coupling
         best = std::min(best, std::abs(p[2] - z));
       std::vector<unsigned int> set;
       for (unsigned int i = 0; i < x0.size(); ++i)
-        if (std::abs(std::abs(x0[i][2] - z) - best) < 1e-9 * prm_.length && std::abs(x0[i][2] - z) <= best + 1e-12)
+        if (std::abs(std::abs(x0[i][2] - z) - best) < 1e-9 * prm_.length &&
+            std::abs(x0[i][2] - z) <= best + 1e-12)
           set.push_back(i);
       return set;
     };
-    gauge_low_  = nearest_layer(0.25 * prm_.length);
-    gauge_high_ = nearest_layer(0.75 * prm_.length);
+    gauge_low_     = nearest_layer(0.25 * prm_.length);
+    gauge_high_    = nearest_layer(0.75 * prm_.length);
     gauge_length0_ = x0[gauge_high_[0]][2] - x0[gauge_low_[0]][2];
     const auto mid = nearest_layer(0.5 * prm_.length);
-    double r_max = 0;
+    double r_max   = 0;
     for (unsigned int i : mid)
       r_max = std::max(r_max, std::hypot(x0[i][0], x0[i][1]));
     for (unsigned int i : mid)
@@ -359,7 +375,7 @@ namespace coupling
     if (ctcs_)
     {
       const auto &fp = body_->pressure_forces();
-      double w = 0;
+      double w       = 0;
       for (unsigned int i = 0; i < body_->n_particles(); ++i)
         w += fp[i].dot(v[i]);
       pressure_work_ += w * dt_;
@@ -383,10 +399,10 @@ namespace coupling
   HistoryRow SpecimenTest::measure() const
   {
     HistoryRow r;
-    r.time         = time_;
-    r.displacement = bottom_->loaded_face_displacement() - top_->loaded_face_displacement();
-    r.force        = top_->compressive_force();
-    r.force_bottom = bottom_->compressive_force();
+    r.time            = time_;
+    r.displacement    = bottom_->loaded_face_displacement() - top_->loaded_face_displacement();
+    r.force           = top_->compressive_force();
+    r.force_bottom    = bottom_->compressive_force();
     const double load = 0.5 * (r.force + r.force_bottom);
     if (bts_)
     {
@@ -398,10 +414,10 @@ namespace coupling
       // CTCS: the pressure acts on the ends too, so the frame carries sigma_1 - p (a balanced
       // piston); the axial stress is the load over the true area plus the pressure
       const double p = ctcs_ ? body_->surface_pressure() : 0.0;
-      r.stress = load / true_area_ + p;
-      r.strain = r.displacement / prm_.length;
+      r.stress       = load / true_area_ + p;
+      r.strain       = r.displacement / prm_.length;
     }
-    const auto &x = body_->positions();
+    const auto &x  = body_->positions();
     const auto &x0 = body_->reference_positions();
     if (!bts_)
     {
@@ -413,20 +429,20 @@ namespace coupling
       z_lo /= gauge_low_.size();
       z_hi /= gauge_high_.size();
       r.axial_gauge_strain = 1.0 - (z_hi - z_lo) / gauge_length0_;
-      double er = 0;
+      double er            = 0;
       for (unsigned int i : gauge_ring_)
         er += std::hypot(x[i][0], x[i][1]) / std::hypot(x0[i][0], x0[i][1]) - 1.0;
       r.radial_strain = er / gauge_ring_.size();
     }
     const sph::Energies e = body_->energies();
-    const double pen = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
-    r.kinetic_energy  = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
-    r.internal_energy = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
-    r.dissipated_energy = e.dissipated() + contact_top_->friction_dissipation() +
-                          contact_bottom_->friction_dissipation() +
-                          top_->damping_dissipation() + bottom_->damping_dissipation();
+    const double pen      = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
+    r.kinetic_energy      = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
+    r.internal_energy     = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
+    r.dissipated_energy   = e.dissipated() + contact_top_->friction_dissipation() +
+                          contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
+                          bottom_->damping_dissipation();
     r.external_work = frame_work_ + pressure_work_;
-    double failed = 0;
+    double failed   = 0;
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
       failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
     r.n_failed = failed;
@@ -459,10 +475,10 @@ namespace coupling
   {
     ParticleSnapshot s;
     const unsigned int n = body_->n_particles();
-    s.n = n;
-    const auto &x = body_->positions();
-    const auto &v = body_->velocities();
-    const auto &x0 = body_->reference_positions();
+    s.n                  = n;
+    const auto &x        = body_->positions();
+    const auto &v        = body_->velocities();
+    const auto &x0       = body_->reference_positions();
     s.position.reserve(3 * n);
     for (unsigned int i = 0; i < n; ++i)
       for (int d = 0; d < 3; ++d)
@@ -484,7 +500,8 @@ namespace coupling
   std::vector<MeshSnapshot> SpecimenTest::mesh_snapshots() const
   {
     std::vector<MeshSnapshot> out;
-    for (const auto &[name, platen] : {std::pair{"platen_top", top_.get()}, std::pair{"platen_bottom", bottom_.get()}})
+    for (const auto &[name, platen] :
+         {std::pair{"platen_top", top_.get()}, std::pair{"platen_bottom", bottom_.get()}})
     {
       const fem::MeshSnapshot f = platen->mesh_snapshot();
       MeshSnapshot m;
@@ -501,18 +518,18 @@ namespace coupling
   Summary SpecimenTest::run(RunObserver &observer)
   {
     const auto wall_start = std::chrono::steady_clock::now();
-    const double t_plan = plan_.confinement_time + plan_.ramp_time * 0.5 +
-                          plan_.planned_strain / plan_.strain_rate;
-    const double t_end = plan_.confinement_time + plan_.ramp_time * 0.5 +
-                         prm_.loading.end_strain / plan_.strain_rate;
+    const double t_plan =
+      plan_.confinement_time + plan_.ramp_time * 0.5 + plan_.planned_strain / plan_.strain_rate;
+    const double t_end =
+      plan_.confinement_time + plan_.ramp_time * 0.5 + prm_.loading.end_strain / plan_.strain_rate;
     const double row_interval  = t_plan / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_plan / std::max(1, prm_.output.n_snapshots);
     double next_row = 0, next_snap = 0;
 
     std::vector<HistoryRow> rows;
-    double peak_force = 0;
-    bool armed = false;
-    bool stop = false;
+    double peak_force       = 0;
+    bool armed              = false;
+    bool stop               = false;
     std::string stop_reason = "end strain";
     while (!stop)
     {
@@ -535,7 +552,7 @@ namespace coupling
         // the load the specimen carries: mean of both load cells (the stress wave that crosses
         // the specimen at the start makes each one oscillate on its own)
         const double load = 0.5 * (r.force + r.force_bottom);
-        peak_force = loading ? std::max(peak_force, load) : peak_force;
+        peak_force        = loading ? std::max(peak_force, load) : peak_force;
         // the failure criterion is armed once the specimen yields somewhere or has passed half of
         // its expected failure strain, so that the start-up transient cannot end the run
         armed = armed || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
@@ -543,7 +560,7 @@ namespace coupling
         if (loading && armed && peak_force > 0 &&
             load < (1.0 - prm_.loading.post_peak_drop) * peak_force)
         {
-          stop = true;
+          stop        = true;
           stop_reason = "post-peak drop";
         }
         if (last)
@@ -560,14 +577,14 @@ namespace coupling
 
     // ---- what the laboratory reads off the curves
     Summary s;
-    s.test        = prm_.test;
-    s.n_particles = body_->n_particles();
-    s.n_steps     = n_steps_;
-    s.true_area   = true_area_;
+    s.test         = prm_.test;
+    s.n_particles  = body_->n_particles();
+    s.n_steps      = n_steps_;
+    s.true_area    = true_area_;
     s.lattice_area = lattice_area_;
-    s.strain_rate = plan_.strain_rate;
-    s.time_step   = dt_;
-    s.stop_reason = stop_reason;
+    s.strain_rate  = plan_.strain_rate;
+    s.time_step    = dt_;
+    s.stop_reason  = stop_reason;
     std::vector<double> stress, strain, gauge, radial;
     for (const auto &r : rows)
     {
@@ -582,9 +599,9 @@ namespace coupling
     if (!stress.empty())
     {
       const std::size_t k = peak_index(stress);
-      s.peak_stress    = stress[k];
-      s.strain_at_peak = strain[k];
-      double f_peak = 0;
+      s.peak_stress       = stress[k];
+      s.strain_at_peak    = strain[k];
+      double f_peak       = 0;
       for (const auto &r : rows)
         f_peak = std::max(f_peak, 0.5 * (r.force + r.force_bottom));
       s.peak_force = f_peak;
@@ -626,20 +643,21 @@ namespace coupling
       max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
     }
     s.max_kinetic_to_internal_energy = max_ratio;
-    s.max_force_imbalance = max_imbalance;
-    s.max_displacement = 0;
+    s.max_force_imbalance            = max_imbalance;
+    s.max_displacement               = 0;
     for (const auto &r : rows)
       s.max_displacement = std::max(s.max_displacement, r.displacement);
     if (!rows.empty())
     {
-      const auto &r = rows.back();
+      const auto &r       = rows.back();
       const double stored = r.kinetic_energy + r.internal_energy + r.dissipated_energy;
       s.energy_balance_error =
         r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
     }
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
-    s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    s.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return s;
   }
 

@@ -26,14 +26,14 @@ namespace coupling
   /// Quantities derived from the case before the run: the loading path and the stop criteria.
   struct LoadingPlan
   {
-    double reference_length = 0;   ///< specimen length (UCS/CTCS) or diameter (BTS) [m]
-    double transit_time = 0;       ///< reference_length / sqrt(E/rho) [s]
+    double reference_length        = 0; ///< specimen length (UCS/CTCS) or diameter (BTS) [m]
+    double transit_time            = 0; ///< reference_length / sqrt(E/rho) [s]
     double expected_failure_strain = 0; ///< from the strength model, for the rate [-]
-    double strain_rate = 0;        ///< nominal axial strain rate [1/s]
-    double platen_speed = 0;       ///< final speed of the top platen [m/s]
-    double ramp_time = 0;          ///< smooth velocity ramp [s]
-    double confinement_time = 0;   ///< CTCS: pressure ramp before axial loading [s]
-    double planned_strain = 0;     ///< strain at which the planned path ends [-]
+    double strain_rate             = 0; ///< nominal axial strain rate [1/s]
+    double platen_speed            = 0; ///< final speed of the top platen [m/s]
+    double ramp_time               = 0; ///< smooth velocity ramp [s]
+    double confinement_time        = 0; ///< CTCS: pressure ramp before axial loading [s]
+    double planned_strain          = 0; ///< strain at which the planned path ends [-]
   };
 
   /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
@@ -69,9 +69,9 @@ namespace coupling
     std::unique_ptr<fem::Platen> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
     double true_area_ = 0, lattice_area_ = 0;
-    double dt_ = 0;
-    int n_substeps_ = 1;
-    double time_ = 0;
+    double dt_           = 0;
+    int n_substeps_      = 1;
+    double time_         = 0;
     std::size_t n_steps_ = 0;
     double frame_work_ = 0, pressure_work_ = 0;
     double domain_size_ = 0;

@@ -47,7 +47,8 @@ TEST(ContactExchange, ForcesCancelToRoundOff)
   for (int j = 0; j < 7; ++j)
     for (int i = 0; i < 7; ++i)
     {
-      x.insert(x.end(), {0.003 + 0.0055 * i, 0.002 + 0.0057 * j, 0.0008 + 1e-5 * ((i * 7 + j) % 5)});
+      x.insert(x.end(),
+               {0.003 + 0.0055 * i, 0.002 + 0.0057 * j, 0.0008 + 1e-5 * ((i * 7 + j) % 5)});
       v.insert(v.end(), {0.1 * i, -0.05 * j, -0.01});
       m.push_back(2e-3);
     }
@@ -138,7 +139,7 @@ TEST(ContactEnergy, ElasticBounceKeepsEnergy)
   // A particle dropped on a rigid face at k = 0.5 of the stability bound bounces back with its
   // speed: the penalty is elastic and the central-difference error is second order in dt.
   const double mass = 1e-3, r = 5e-4, v0 = 1.0, dt = 1e-6;
-  const double k = 0.5 * stable_contact_stiffness(mass, 0.0, dt);
+  const double k         = 0.5 * stable_contact_stiffness(mass, 0.0, dt);
   const ContactSurface s = flat_surface(1, 0.01, 0.0, 0.0);
   ContactParameters prm;
   prm.stiffness = k;

@@ -17,12 +17,12 @@ namespace
   CaseParameters elastic_ucs()
   {
     CaseParameters p;
-    p.test                = "UCS";
-    p.rock.model          = "elastic";
-    p.rock.youngs_modulus = 97.07e9; // group M1, Table 3
-    p.rock.poissons_ratio = 0.28;
-    p.sph.spacing         = 2.5e-3; // D/20, the resolution the SPH issue asks E and nu at
-    p.loading.end_strain  = 1e-3;
+    p.test                  = "UCS";
+    p.rock.model            = "elastic";
+    p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
+    p.rock.poissons_ratio   = 0.28;
+    p.sph.spacing           = 2.5e-3; // D/20, the resolution the SPH issue asks E and nu at
+    p.loading.end_strain    = 1e-3;
     p.output.n_history_rows = 200;
     return p;
   }

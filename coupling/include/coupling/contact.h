@@ -19,9 +19,9 @@ namespace coupling
   /// of the platen, towards the rock.
   struct ContactSurface
   {
-    std::vector<double> position;             ///< [m]
-    std::vector<double> velocity;             ///< [m/s]
-    std::vector<double> mass;                 ///< lumped nodal mass [kg]; 0 for a rigid platen
+    std::vector<double> position; ///< [m]
+    std::vector<double> velocity; ///< [m/s]
+    std::vector<double> mass;     ///< lumped nodal mass [kg]; 0 for a rigid platen
     std::vector<std::array<unsigned int, 4>> faces;
     std::size_t n_nodes() const { return mass.size(); }
   };
@@ -31,16 +31,16 @@ namespace coupling
   {
     const double *position = nullptr; ///< [m]
     const double *velocity = nullptr; ///< [m/s]
-    const double *mass = nullptr;     ///< [kg]
-    std::size_t n = 0;
+    const double *mass     = nullptr; ///< [kg]
+    std::size_t n          = 0;
   };
 
   struct ContactParameters
   {
-    double stiffness = 0.0;        ///< normal (and tangential) penalty stiffness per particle [N/m]
-    double friction_static = 0.0;  ///< Coulomb static coefficient [-]
+    double stiffness        = 0.0; ///< normal (and tangential) penalty stiffness per particle [N/m]
+    double friction_static  = 0.0; ///< Coulomb static coefficient [-]
     double friction_dynamic = 0.0; ///< Coulomb dynamic coefficient [-] (<= static)
-    double radius = 0.0;           ///< particle contact radius: half the particle spacing [m]
+    double radius           = 0.0; ///< particle contact radius: half the particle spacing [m]
   };
 
   /// Largest stable penalty stiffness for a particle of mass m_s against a node of mass m_m
@@ -80,7 +80,7 @@ namespace coupling
   private:
     struct Hit
     {
-      int face = -1;
+      int face   = -1;
       double gap = 0;                 ///< signed distance beyond the contact radius [m]
       std::array<double, 4> weight{}; ///< shape-function weights of the face nodes
       std::array<double, 3> normal{}; ///< unit, out of the platen

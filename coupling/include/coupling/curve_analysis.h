@@ -25,6 +25,5 @@ namespace coupling
   /// curve does not reach them or the axial strain does not change.
   double secant_poissons_ratio(const std::vector<double> &axial_strain,
                                const std::vector<double> &lateral_strain,
-                               const std::vector<double> &stress, double lo = 0.4,
-                               double hi = 0.6);
+                               const std::vector<double> &stress, double lo = 0.4, double hi = 0.6);
 } // namespace coupling
