@@ -54,6 +54,10 @@ namespace fem
       {
         check_positive(g.size_x, "PlatenGeometry::size_x [m]");
         check_positive(g.size_y, "PlatenGeometry::size_y [m]");
+        if (g.shape == PlatenShape::jaw && !(g.jaw_radius > 0.5 * g.size_x))
+          throw std::invalid_argument(
+            "fem::Platen: PlatenGeometry::jaw_radius [m] must exceed size_x / 2 = " +
+            std::to_string(0.5 * g.size_x) + ", got " + std::to_string(g.jaw_radius));
       }
       check_positive(g.thickness, "PlatenGeometry::thickness [m]");
       check_positive(p.element_size, "Parameters::element_size [m]");
@@ -209,6 +213,22 @@ namespace fem
           else
             face->set_boundary_id(boundary_id::free_faces);
         }
+    if (g.shape == PlatenShape::jaw)
+    {
+      // bend the contact face into the arc z_c + (R - sqrt(R^2 - x^2)) (away from the rock),
+      // fading linearly to zero at the loaded face, which stays flat; boundary ids were set on the
+      // flat box and are kept
+      const double R = g.jaw_radius;
+      GridTools::transform(
+        [&](const Point<3> &q) {
+          const double rise  = R - std::sqrt(R * R - q[0] * q[0]);
+          const double share = above ? 1.0 - q[2] / g.thickness : q[2] / g.thickness;
+          Point<3> out       = q;
+          out[2] += (above ? 1.0 : -1.0) * rise * share;
+          return out;
+        },
+        tria);
+    }
     Tensor<1, 3> shift;
     shift[0] = g.center_x;
     shift[1] = g.center_y;

@@ -341,3 +341,38 @@ TEST(FemOutput, SnapshotUsesVtkHexahedraWithPositiveVolume)
   EXPECT_NO_THROW(platen.write_vtu(file));
   EXPECT_THROW(platen.write_vtu("/nonexistent-folder/x.vtu"), std::runtime_error);
 }
+
+TEST(FemMesh, JawContactFaceFollowsItsArc)
+{
+  // ISRM jaw for a 50 mm disc: arc radius 1.5 x 25 mm, 30 mm wide, top jaw touching at z = 0.05
+  fem::PlatenGeometry g;
+  g.shape      = fem::PlatenShape::jaw;
+  g.size_x     = 0.03;
+  g.size_y     = 0.03;
+  g.thickness  = 0.02;
+  g.jaw_radius = 0.0375;
+  g.contact_z  = 0.05;
+  g.side       = fem::PlatenSide::above;
+  fem::Parameters prm;
+  prm.element_size = 0.0025;
+  const fem::Platen jaw(g, prm);
+  // every contact node lies on the arc z = contact_z + R - sqrt(R^2 - x^2): the transform places
+  // them there exactly, so only round-off remains
+  const auto x = jaw.contact_positions();
+  ASSERT_GT(x.size(), 3u * 20);
+  for (std::size_t i = 0; i < x.size(); i += 3)
+  {
+    const double R = g.jaw_radius;
+    EXPECT_NEAR(x[i + 2], g.contact_z + R - std::sqrt(R * R - x[i] * x[i]), 1e-12);
+  }
+  // volume: the box less the circular segment swept along y; the mesh chords the arc, so it
+  // holds a little more than the true body: 1e-3 covers the chord error at 2.5 mm cells
+  const double a = 0.5 * g.size_x, R = g.jaw_radius;
+  const double segment = 2.0 * a * R - (a * std::sqrt(R * R - a * a) + R * R * std::asin(a / R));
+  const double V       = g.size_x * g.size_y * g.thickness - segment * g.size_y;
+  EXPECT_NEAR(jaw.mesh_volume() / V, 1.0, 1e-3);
+  // and the lumped mass keeps the mesh's mass exactly (round-off)
+  EXPECT_NEAR(jaw.total_mass() / (prm.density * jaw.mesh_volume()), 1.0, 1e-10);
+  // the contact normals still point out of the jaw, towards the rock (down)
+  EXPECT_LT(jaw.contact_normal_z(), 0.0);
+}

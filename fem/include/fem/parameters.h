@@ -17,7 +17,9 @@ namespace fem
   enum class PlatenShape
   {
     cylinder, ///< disc of `diameter` and `thickness`, axis along z (UCS, CTCS)
-    box       ///< flat block `size_x` x `size_y` x `thickness` (BTS)
+    box,      ///< flat block `size_x` x `size_y` x `thickness` (BTS)
+    jaw       ///< ISRM curved loading jaw: the box with its contact face a circular arc of radius
+              ///< `jaw_radius` about an axis along y (BTS; ISRM: 1.5 x the disc radius)
   };
 
   /// Which side of the contact plane z = contact_z the platen body lies on.
@@ -46,13 +48,14 @@ namespace fem
   struct PlatenGeometry
   {
     PlatenShape shape = PlatenShape::cylinder;
-    double diameter   = 0.07; ///< cylinder diameter [m]
-    double size_x     = 0.07; ///< box extent along x [m]
-    double size_y     = 0.04; ///< box extent along y [m]
-    double thickness  = 0.02; ///< extent along z [m]
-    double contact_z  = 0.0;  ///< z of the contact face [m]
-    double center_x   = 0.0;  ///< [m]
-    double center_y   = 0.0;  ///< [m]
+    double diameter   = 0.07;   ///< cylinder diameter [m]
+    double size_x     = 0.07;   ///< box extent along x [m]
+    double size_y     = 0.04;   ///< box extent along y [m]
+    double jaw_radius = 0.0375; ///< jaw: radius of the contact arc [m]; > size_x / 2
+    double thickness  = 0.02;   ///< extent along z [m]
+    double contact_z  = 0.0;    ///< z of the contact face [m]
+    double center_x   = 0.0;    ///< [m]
+    double center_y   = 0.0;    ///< [m]
     PlatenSide side   = PlatenSide::above;
   };
 
