@@ -55,6 +55,24 @@ namespace sph
       const Tensor3 I = Tensor3::Identity();
       return (I - 0.5 * w).inverse() * (I + 0.5 * w);
     }
+
+    /// Sum over the pairs of particle i of V_j (f_j - f_i) (x) grad_i W_ij: the gradient of the
+    /// field f at i before the correction L_i (positions in TL give F, velocities in UL grad v).
+    template <int dim>
+    inline Tensor<dim> pair_gradient(const PairList &pairs, const std::vector<Vector<dim>> &grad_w,
+                                     const std::vector<double> &volume,
+                                     const std::vector<Vector<dim>> &f, const long i)
+    {
+      Tensor<dim> A = Tensor<dim>::Zero();
+      for (std::int32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k)
+        {
+          const std::int32_t p = pairs.incidence[k];
+          const std::int32_t j = pairs.other(p, i);
+          const double       s = (pairs.first[p] == i) ? volume[j] : -volume[j];
+          A.noalias() += (s * (f[j] - f[i])) * grad_w[p].transpose();
+        }
+      return A;
+    }
   } // namespace
 
   template <int dim>
@@ -286,14 +304,7 @@ namespace sph
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
         for (long i = 0; i < static_cast<long>(n); ++i)
           {
-            Tensor<dim> A = Tensor<dim>::Zero();
-            for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
-              {
-                const std::int32_t p = pairs_.incidence[k];
-                const std::int32_t j = pairs_.other(p, i);
-                const double       s = (pairs_.first[p] == i) ? p_.volume0[j] : -p_.volume0[j];
-                A.noalias() += (s * (p_.x[j] - p_.x[i])) * grad_w_[p].transpose();
-              }
+            const Tensor<dim> A = pair_gradient<dim>(pairs_, grad_w_, p_.volume0, p_.x, i);
             const Tensor<dim> F = A * p_.L[i].transpose();
             // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
             const Tensor<dim> G = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
@@ -335,14 +346,7 @@ namespace sph
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
         for (long i = 0; i < static_cast<long>(n); ++i)
           {
-            Tensor<dim> A = Tensor<dim>::Zero();
-            for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
-              {
-                const std::int32_t p = pairs_.incidence[k];
-                const std::int32_t j = pairs_.other(p, i);
-                const double       s = (pairs_.first[p] == i) ? p_.volume[j] : -p_.volume[j];
-                A.noalias() += (s * (p_.v[j] - p_.v[i])) * grad_w_[p].transpose();
-              }
+            const Tensor<dim> A = pair_gradient<dim>(pairs_, grad_w_, p_.volume, p_.v, i);
             const Tensor<dim> grad_v = A * p_.L[i].transpose();
             const Tensor3     g      = embed<dim>(Tensor<dim>(grad_v * dt));
             const Tensor3     de     = 0.5 * (g + g.transpose());

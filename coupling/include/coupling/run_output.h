@@ -40,8 +40,8 @@ namespace coupling
     std::vector<double> damage;          ///< [0,1]
   };
 
-  /// A platen mesh at one instant: hexahedra, vertices in deal.II's lexicographic order mapped to
-  /// VTK order by the writer. Vectors flat as above.
+  /// A platen mesh at one instant: hexahedra with their 8 vertices in VTK hexahedron order (fem
+  /// gives them so; the writer does not re-map). Vectors flat as above.
   struct MeshSnapshot
   {
     std::string name;                     ///< e.g. "platen_top"
