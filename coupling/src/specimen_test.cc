@@ -652,11 +652,15 @@ namespace coupling
       else
         s.platen_modulus = secant_modulus(strain, stress);
     }
+    // judged over the loading up to the peak, where the measurement is made: after it the
+    // failure releases stored energy dynamically, as in a laboratory test
     double max_ratio = 0, max_imbalance = 0;
     for (const auto &r : rows)
     {
       if (r.time <= plan_.confinement_time || s.peak_force <= 0)
         continue;
+      if (r.strain > s.strain_at_peak)
+        break;
       const double load = 0.5 * (r.force + r.force_bottom);
       // judged once the specimen carries a tenth of its peak: before that both energies are tiny
       if (load < 0.1 * s.peak_force)

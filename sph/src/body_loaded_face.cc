@@ -26,8 +26,9 @@ namespace sph
         h_max = std::max(h_max, p_.h[i]);
         top   = std::max(top, n.dot(p_.x0[i]));
       }
-    // the boundary term reaches as deep as the kernel support (2h) below the outer layer
-    const double depth = 2.0 * h_max + 0.01 * prm_.spacing;
+    // the boundary term reaches two kernel supports deep: particles within 2h of the surface
+    // have truncated supports (L != I), and their L enters the sums of their neighbours
+    const double depth = 4.0 * h_max + 0.01 * prm_.spacing;
     // columns: particles with the same lateral lattice position, outer particle first
     std::map<std::array<long, dim>, std::vector<std::pair<double, unsigned int>>> columns;
     for (unsigned int i = 0; i < n_particles(); ++i)
@@ -42,6 +43,16 @@ namespace sph
         columns[key].emplace_back(-height, i);
       }
     face_area_.resize(n_particles(), 0.0);
+    std::vector<bool> taken(n_particles(), false);
+    for (const FaceColumn &column : face_columns_)
+      for (const unsigned int k : column.members)
+        taken[k] = true;
+    for (const auto &entry : columns)
+      for (const auto &m : entry.second)
+        if (taken[m.second])
+          throw std::invalid_argument(
+            "sph::Body::add_loaded_face: the body is too thin for two loaded faces (each takes "
+            "the particles within two kernel supports of it)");
     unsigned int count = 0;
     for (auto &entry : columns)
       {
