@@ -10,6 +10,8 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace coupling
@@ -76,6 +78,12 @@ namespace coupling
     double friction_dissipation() const { return friction_dissipation_; }
     /// Particles that slid in the last apply().
     std::size_t n_sliding() const { return n_sliding_; }
+
+    /// Adds the friction history (stick springs, sliding flags) and the energy accounts to `out`
+    /// as flat arrays named `prefix` + name (checkpoints). Defined in contact_state.cc.
+    void save_state(std::map<std::string, std::vector<double>> &out, const std::string &prefix) const;
+    /// Restores what save_state wrote; std::invalid_argument on a missing or mis-sized array.
+    void load_state(const std::map<std::string, std::vector<double>> &in, const std::string &prefix);
 
   private:
     struct Hit
