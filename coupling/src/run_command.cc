@@ -303,6 +303,13 @@ namespace coupling
       write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
       ResultsFile results((staging / "results.h5").string());
       ProgressDisplay progress(case_file.parameters.output.progress && !options.quiet);
+      if (!options.restart.empty())
+      {
+        // the interrupted run's snapshots up to its checkpoint come first
+        const auto scalars = resume.find("driver.scalars");
+        if (scalars != resume.end() && !scalars->second.empty())
+          results.copy_snapshots((fs::path(options.restart) / "results.h5").string(), scalars->second[0]);
+      }
       RecordingObserver observer(results, progress, staging);
       const StopSignals stop_signals;
       const auto start = std::chrono::steady_clock::now();

@@ -24,10 +24,10 @@ namespace
 {
   const std::string ucs_case = source("cases/ucs/ucs.prm");
 
-  /// The small case of these tests: the default UCS at an 8 mm spacing (about 400 particles, a
+  /// The small case of these tests: the default UCS at a 5 mm spacing (about 1,600 particles, a
   /// few hundred steps) up to 0.2 % strain (past the first yield at the platens), two SPH threads
   /// so that the threaded sums are exercised.
-  const std::vector<std::string> small = {"SPH/Particle spacing=0.008", "SPH/Threads=2",
+  const std::vector<std::string> small = {"SPH/Particle spacing=0.005", "SPH/Threads=2",
                                           "Loading/End strain=0.002", "Output/History rows=100",
                                           "Output/Progress=false"};
 
@@ -75,15 +75,24 @@ namespace
     return ::testing::AssertionSuccess();
   }
 
-  std::vector<coupling::HistoryRow> uninterrupted()
+  /// The reference run, once per test program.
+  struct Reference
   {
-    static const std::vector<coupling::HistoryRow> rows = [] {
+    std::vector<coupling::HistoryRow> rows;
+    std::size_t n_steps = 0;
+  };
+  const Reference &reference_run()
+  {
+    static const Reference ref = [] {
       Recorder r;
-      coupling::run_case(small_case(), r);
-      return r.rows;
+      Reference out;
+      out.n_steps = coupling::run_case(small_case(), r).n_steps;
+      out.rows    = r.rows;
+      return out;
     }();
-    return rows;
+    return ref;
   }
+  const std::vector<coupling::HistoryRow> &uninterrupted() { return reference_run().rows; }
 } // namespace
 
 TEST(Determinism, TwoRunsGiveIdenticalHistories)
@@ -101,8 +110,7 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   // a random step inside the run (the seed is printed so that a failure can be repeated)
   const unsigned seed = std::random_device{}();
   SCOPED_TRACE("seed " + std::to_string(seed));
-  Recorder probe;
-  const std::size_t n_steps = coupling::run_case(small_case(), probe).n_steps;
+  const std::size_t n_steps = reference_run().n_steps;
   std::mt19937 random(seed);
   const long stop_at = std::uniform_int_distribution<long>(5, long(n_steps) - 5)(random);
   SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(n_steps));
@@ -146,8 +154,8 @@ TEST(Restart, CheckpointOfAnotherCaseIsRefused)
   Recorder second;
   try
   {
-    coupling::run_case(small_case({"SPH/Particle spacing=0.006"}), second, &first.last_checkpoint);
-    FAIL() << "a checkpoint of a 5 mm lattice was accepted by a 6 mm case";
+    coupling::run_case(small_case({"SPH/Particle spacing=0.0045"}), second, &first.last_checkpoint);
+    FAIL() << "a checkpoint of a 5 mm lattice was accepted by a 4.5 mm case";
   }
   catch (const coupling::InputError &e)
   {
@@ -261,6 +269,17 @@ TEST(Restart, SigtermThenRestartGivesTheUninterruptedHistoryCsv)
   EXPECT_TRUE(read_file(cut_dir / "history.csv") == reference) << "restarted history.csv differs";
   EXPECT_TRUE(fs::exists(cut_dir / "summary.json"));
   EXPECT_EQ(read_file(cut_dir / "summary.json").find("interrupted"), std::string::npos);
+  // the snapshots: the interrupted run's up to its checkpoint, then the restarted run's; the same
+  // times as the uninterrupted run's
+  auto times = [](const std::string &xdmf) {
+    std::vector<std::string> t;
+    for (auto at = xdmf.find("<Time Value="); at != std::string::npos; at = xdmf.find("<Time Value=", at + 1))
+      t.push_back(xdmf.substr(at, xdmf.find('>', at) - at));
+    return t;
+  };
+  const auto t_full = times(read_file(box.dir() / "full" / "results.xdmf"));
+  EXPECT_GT(t_full.size(), 2u);
+  EXPECT_EQ(times(read_file(cut_dir / "results.xdmf")), t_full);
 }
 
 TEST(Restart, BadRestartArgumentsAreInputErrors)

@@ -92,6 +92,9 @@ namespace coupling
       double gap = 0;                 ///< signed distance beyond the contact radius [m]
       std::array<double, 4> weight{}; ///< shape-function weights of the face nodes
       std::array<double, 3> normal{}; ///< unit, out of the platen
+      double normal_force = 0;        ///< [N], this particle's share of normal_force()
+      double energy       = 0;        ///< penalty + stick-spring energy [J]
+      double dissipated   = 0;        ///< friction work of this apply() [J]
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
     void build_face_grid(const ContactSurface &surface);
