@@ -43,8 +43,8 @@ namespace coupling
       const hid_t space = H5Screate_simple(1, &n, nullptr);
       const hid_t set   = H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
                                      H5P_DEFAULT, H5P_DEFAULT);
-      ok = set >= 0 &&
-           (n == 0 || H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0);
+      ok = set >= 0 && (n == 0 || H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                           values.data()) >= 0);
       if (set >= 0)
         H5Dclose(set);
       H5Sclose(space);
@@ -74,7 +74,7 @@ namespace coupling
       throw InputError("checkpoint " + path + ": not a readable HDF5 file");
     StateArrays state;
     std::string error;
-    int version = -1;
+    int version      = -1;
     const hid_t attr = H5Aopen(file, "cosim_checkpoint_version", H5P_DEFAULT);
     if (attr < 0 || H5Aread(attr, H5T_NATIVE_INT, &version) < 0)
       error = "not a cosim checkpoint (no cosim_checkpoint_version attribute)";
@@ -96,7 +96,8 @@ namespace coupling
         break;
       }
       std::string name(static_cast<std::size_t>(len), '\0');
-      H5Lget_name_by_idx(file, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), len + 1, H5P_DEFAULT);
+      H5Lget_name_by_idx(file, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), len + 1,
+                         H5P_DEFAULT);
       const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
       if (set < 0)
       {

@@ -32,7 +32,8 @@ namespace sph
       out[name] = values;
     }
 
-    const std::vector<double> &find(const StateArrays &in, const std::string &name, std::size_t size)
+    const std::vector<double> &find(const StateArrays &in, const std::string &name,
+                                    std::size_t size)
     {
       const auto it = in.find(name);
       if (it == in.end())
@@ -47,7 +48,7 @@ namespace sph
     template <typename T>
     void unpack(const StateArrays &in, const std::string &name, std::vector<T> &values)
     {
-      constexpr int k            = T::SizeAtCompileTime;
+      constexpr int k              = T::SizeAtCompileTime;
       const std::vector<double> &a = find(in, name, values.size() * k);
       for (std::size_t i = 0; i < values.size(); ++i)
         std::copy(a.begin() + i * k, a.begin() + (i + 1) * k, values[i].data());
@@ -82,11 +83,11 @@ namespace sph
     pack(out, prefix + "f_pressure", p_.f_pressure);
     std::vector<double> plastic(n), damage(n), constrained(n);
     for (std::size_t i = 0; i < n; ++i)
-      {
-        plastic[i]     = p_.history[i].plastic_strain;
-        damage[i]      = p_.history[i].damage;
-        constrained[i] = constrained_[i];
-      }
+    {
+      plastic[i]     = p_.history[i].plastic_strain;
+      damage[i]      = p_.history[i].damage;
+      constrained[i] = constrained_[i];
+    }
     out[prefix + "plastic_strain"] = std::move(plastic);
     out[prefix + "damage"]         = std::move(damage);
     out[prefix + "constrained"]    = std::move(constrained);
@@ -121,11 +122,11 @@ namespace sph
     const auto &damage  = find(in, prefix + "damage", n);
     const auto &constr  = find(in, prefix + "constrained", n);
     for (std::size_t i = 0; i < n; ++i)
-      {
-        p_.history[i].plastic_strain = plastic[i];
-        p_.history[i].damage         = damage[i];
-        constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
-      }
+    {
+      p_.history[i].plastic_strain = plastic[i];
+      p_.history[i].damage         = damage[i];
+      constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
+    }
     unpack(in, prefix + "prescribed", prescribed_);
     unpack(in, prefix + "reaction", reaction_);
     unpack(in, prefix + "stress_work", stress_work_);

@@ -44,7 +44,7 @@ namespace
     std::vector<coupling::HistoryRow> rows;
     coupling::StateArrays last_checkpoint;
     std::size_t checkpoint_step = 0, n_checkpoints = 0;
-    long good_step = -1;
+    long good_step             = -1;
     std::size_t good_particles = 0;
     void history(const coupling::HistoryRow &r) override { rows.push_back(r); }
     void checkpoint(std::size_t step, const coupling::StateArrays &state) override
@@ -70,8 +70,8 @@ namespace
     for (std::size_t k = 0; k < a.size(); ++k)
       if (std::memcmp(&a[k], &b[k], sizeof(coupling::HistoryRow)) != 0)
         return ::testing::AssertionFailure()
-               << "row " << k << " differs (t = " << a[k].time << " / " << b[k].time
-               << " s, force " << a[k].force << " / " << b[k].force << " N)";
+               << "row " << k << " differs (t = " << a[k].time << " / " << b[k].time << " s, force "
+               << a[k].force << " / " << b[k].force << " N)";
     return ::testing::AssertionSuccess();
   }
 
@@ -92,7 +92,10 @@ namespace
     }();
     return ref;
   }
-  const std::vector<coupling::HistoryRow> &uninterrupted() { return reference_run().rows; }
+  const std::vector<coupling::HistoryRow> &uninterrupted()
+  {
+    return reference_run().rows;
+  }
 } // namespace
 
 TEST(Determinism, TwoRunsGiveIdenticalHistories)
@@ -116,8 +119,9 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(n_steps));
 
   Recorder first;
-  EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), first),
-               coupling::RunInterrupted);
+  EXPECT_THROW(
+    coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), first),
+    coupling::RunInterrupted);
   ASSERT_EQ(first.n_checkpoints, 1u);
   EXPECT_EQ(first.checkpoint_step, std::size_t(stop_at));
   EXPECT_LT(first.rows.size(), reference.size());
@@ -131,10 +135,12 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   for (const auto &[name, values] : first.last_checkpoint)
   {
     ASSERT_EQ(state.at(name).size(), values.size()) << name;
-    EXPECT_EQ(std::memcmp(state.at(name).data(), values.data(), values.size() * sizeof(double)), 0) << name;
+    EXPECT_EQ(std::memcmp(state.at(name).data(), values.data(), values.size() * sizeof(double)), 0)
+      << name;
   }
   Recorder second;
-  coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), second, &state);
+  coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), second,
+                     &state);
   EXPECT_TRUE(identical(reference, second.rows));
 }
 
@@ -150,7 +156,8 @@ TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
 TEST(Restart, CheckpointOfAnotherCaseIsRefused)
 {
   Recorder first;
-  EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=10"}), first), coupling::RunInterrupted);
+  EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=10"}), first),
+               coupling::RunInterrupted);
   Recorder second;
   try
   {
@@ -188,7 +195,8 @@ TEST(Instability, TssfacFiveIsCaughtWithinOneStepWithItsLastGoodState)
 TEST(Instability, CosimExitsWithThreeAndWritesTheLastGoodState)
 {
   Sandbox box;
-  std::vector<std::string> args = {"run", ucs_case, "--quiet", "-o", "out", "--set", "SPH/TSSFAC=5"};
+  std::vector<std::string> args = {"run", ucs_case, "--quiet",     "-o",
+                                   "out", "--set",  "SPH/TSSFAC=5"};
   for (const auto &s : small)
   {
     args.push_back("--set");
@@ -199,11 +207,14 @@ TEST(Instability, CosimExitsWithThreeAndWritesTheLastGoodState)
   EXPECT_NE(r.err.find("unstable run: step "), std::string::npos) << r.err;
   const fs::path failed = box.dir() / "out.failed";
   EXPECT_FALSE(fs::exists(box.dir() / "out")) << "an unstable run is not a result";
-  for (const char *f : {"last_good_state.h5", "last_good_state.xdmf", "failure.txt", "summary.json", "history.csv"})
+  for (const char *f :
+       {"last_good_state.h5", "last_good_state.xdmf", "failure.txt", "summary.json", "history.csv"})
     EXPECT_TRUE(fs::exists(failed / f)) << f;
   const std::string summary = read_file(failed / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"unstable\""), std::string::npos) << summary;
-  EXPECT_NE(summary.find("\"last_good_state\": {\"file\": \"last_good_state.h5\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"last_good_state\": {\"file\": \"last_good_state.h5\""),
+            std::string::npos)
+    << summary;
 }
 
 // The real thing: SIGTERM to a running cosim, then cosim run --restart; history.csv must equal
@@ -259,8 +270,9 @@ TEST(Restart, SigtermThenRestartGivesTheUninterruptedHistoryCsv)
   const fs::path cut_dir = box.dir() / "cut";
   for (const char *f : {"checkpoint.h5", "used_parameters.prm", "history.csv", "summary.json"})
     EXPECT_TRUE(fs::exists(cut_dir / f)) << f;
-  EXPECT_NE(read_file(cut_dir / "summary.json").find("\"status\": \"interrupted\""), std::string::npos);
-  const std::string partial = read_file(cut_dir / "history.csv");
+  EXPECT_NE(read_file(cut_dir / "summary.json").find("\"status\": \"interrupted\""),
+            std::string::npos);
+  const std::string partial   = read_file(cut_dir / "history.csv");
   const std::string reference = read_file(box.dir() / "full" / "history.csv");
   ASSERT_LT(partial.size(), reference.size()) << "the run ended before SIGTERM arrived";
 
@@ -273,7 +285,8 @@ TEST(Restart, SigtermThenRestartGivesTheUninterruptedHistoryCsv)
   // times as the uninterrupted run's
   auto times = [](const std::string &xdmf) {
     std::vector<std::string> t;
-    for (auto at = xdmf.find("<Time Value="); at != std::string::npos; at = xdmf.find("<Time Value=", at + 1))
+    for (auto at = xdmf.find("<Time Value="); at != std::string::npos;
+         at      = xdmf.find("<Time Value=", at + 1))
       t.push_back(xdmf.substr(at, xdmf.find('>', at) - at));
     return t;
   };
@@ -292,11 +305,52 @@ TEST(Restart, BadRestartArgumentsAreInputErrors)
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("takes no case file"), std::string::npos) << r.err;
   // a folder with parameters but a broken checkpoint
-  box.write("dir/used_parameters.prm", read_file(ucs_case) + "subsection Rock\n  set Data directory = " +
-                                         source("cases/data") + "\nend\n");
+  box.write("dir/used_parameters.prm",
+            read_file(ucs_case) +
+              "subsection Rock\n  set Data directory = " + source("cases/data") + "\nend\n");
   box.write("dir/checkpoint.h5", "not HDF5");
   r = run_cosim(box, {"run", "--restart", "dir"});
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("checkpoint"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// More malformed inputs (issue 9; tests/app/bad_input_test.cc has the first 41): every range the
+// case file checks that had no test yet, and the keys this issue adds. Each: exit status 2, one
+// line naming the key and what is accepted, nothing written.
+TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
+{
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+    {"Test/Diameter=0", {"Test/Diameter", "(0, 10] m"}},
+    {"Test/Length=-0.1", {"Test/Length", "(0, 10] m"}},
+    {"Rock/Density=0", {"Rock/Density", "(0, 30000) kg/m^3"}},
+    {"Rock/Youngs modulus=-1", {"Rock/Youngs modulus"}},
+    {"Rock/Softening strain=1", {"Rock/Softening strain", "(0, 1)"}},
+    {"Rock/Residual fraction=1.5", {"Rock/Residual fraction", "[0, 1]"}},
+    {"SPH/CSLH=3", {"SPH/CSLH"}},
+    {"SPH/Hourglass coefficient=2", {"SPH/Hourglass coefficient", "[0, 1]"}},
+    {"SPH/Threads=-1", {"SPH/Threads", "[0, 4096]"}},
+    {"Platens/Friction coefficient=-0.1", {"Platens/Friction coefficient", "[0, 2]"}},
+    {"Platens/Contact stiffness scale=2", {"Platens/Contact stiffness scale"}},
+    {"Platens/Poissons ratio=0.5", {"Platens/Poissons ratio", "[0, 0.5)"}},
+    {"Loading/End strain=0.9", {"Loading/End strain", "(0, 0.5]"}},
+    {"Loading/Post-peak drop=1", {"Loading/Post-peak drop", "(0, 1)"}},
+    {"Output/History rows=1", {"Output/History rows", "[2, 10000000]"}},
+    {"Output/Checkpoint interval=-1", {"Output/Checkpoint interval", ">= 0"}},
+    {"Output/Checkpoint minutes=-5", {"Output/Checkpoint minutes", "[0, 1e6]"}},
+    {"Output/Stop after steps=-2", {"Output/Stop after steps", ">= 0"}},
+  };
+  ASSERT_GE(cases.size(), 18u);
+  for (const auto &[set, expected] : cases)
+  {
+    SCOPED_TRACE(set);
+    Sandbox box;
+    const Result r = run_cosim(box, {"run", ucs_case, "--quiet", "--set", set});
+    EXPECT_EQ(r.status, 2) << r.err;
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line only:\n" << r.err;
+    for (const auto &e : expected)
+      EXPECT_NE(r.err.find(e), std::string::npos) << "message lacks '" << e << "': " << r.err;
+    EXPECT_TRUE(listing(box.dir()).empty()) << "bad input must write nothing";
+  }
 }
