@@ -467,11 +467,14 @@ namespace coupling
     const auto &m      = body_->masses();
     const double c     = body_->wave_speed();
     const unsigned int n = body_->n_particles();
-    auto fail = [&](const std::string &what, unsigned int i, const std::string &cause) {
+    // where: a particle id and position, or (i < 0) the platen named in `what`
+    auto fail = [&](const std::string &what, long i, const std::string &cause) {
       std::ostringstream os;
-      os << "step " << n_steps_ << ", t = " << time_ << " s: " << what << " at particle " << i
-         << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ") m; likely cause: " << cause
-         << "; last good state: step " << last_good_step_ << ", t = " << last_good_time_ << " s";
+      os << "step " << n_steps_ << ", t = " << time_ << " s: " << what;
+      if (i >= 0)
+        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ") m";
+      os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
+         << ", t = " << last_good_time_ << " s";
       observer.last_good_state(last_good_step_, last_good_time_, last_good_);
       throw InstabilityError(os.str());
     };
@@ -529,9 +532,23 @@ namespace coupling
     {
       const fem::Platen &pl = *platens[k];
       if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
-        fail(std::string("non-finite force or energy in the ") + (k == 0 ? "top" : "bottom") +
-               " platen, next to",
-             0, "a platen time step above its stable limit or a contact stiffness near its bound");
+      {
+        std::ostringstream os;
+        os << "non-finite state of the " << (k == 0 ? "top" : "bottom")
+           << " platen (reaction " << pl.reaction_force() << " N, kinetic energy "
+           << pl.kinetic_energy() << " J, loaded-face displacement "
+           << pl.loaded_face_displacement() << " m)";
+        const std::vector<double> xc = pl.contact_positions();
+        for (std::size_t j = 0; j < xc.size() / 3; ++j)
+          if (!std::isfinite(xc[3 * j] + xc[3 * j + 1] + xc[3 * j + 2]))
+          {
+            os << ", first non-finite contact node " << j;
+            break;
+          }
+        fail(os.str(), -1,
+             "a platen time step above its stable limit or a contact stiffness near its bound "
+             "(Platens/Contact stiffness scale)");
+      }
     }
 
     // the state passed: keep it as the last good one (buffers reused, no allocation per step)

@@ -153,6 +153,18 @@ TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
   EXPECT_TRUE(identical(uninterrupted(), r.rows));
 }
 
+TEST(Restart, TimedCheckpointsAreWrittenWhenTheirIntervalHasPassed)
+{
+  // an interval far below one step's wall time: a checkpoint after every step, the last one the
+  // stop's
+  Recorder r;
+  EXPECT_THROW(coupling::run_case(
+                 small_case({"Output/Checkpoint minutes=1e-9", "Output/Stop after steps=12"}), r),
+               coupling::RunInterrupted);
+  EXPECT_EQ(r.n_checkpoints, 12u);
+  EXPECT_EQ(r.checkpoint_step, 12u);
+}
+
 TEST(Restart, CheckpointOfAnotherCaseIsRefused)
 {
   Recorder first;
