@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
@@ -142,6 +143,39 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), second,
                      &state);
   EXPECT_TRUE(identical(reference, second.rows));
+}
+
+// The same with elastic (FEM) platens and friction: the platen state (u, v, K u, ...) and the
+// contact stick springs must come back too.
+TEST(Restart, ElasticPlatensWithFrictionContinueBitwise)
+{
+  const std::vector<std::string> extra = {"Platens/Model=elastic",
+                                          "Platens/Friction coefficient=0.3"};
+  Recorder whole;
+  const std::size_t n_steps = coupling::run_case(small_case(extra), whole).n_steps;
+  ASSERT_GT(n_steps, 60u);
+  const unsigned seed = std::random_device{}();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 random(seed);
+  const long stop_at = std::uniform_int_distribution<long>(40, long(n_steps) - 5)(random);
+  SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(n_steps));
+  auto with_stop = extra;
+  with_stop.push_back("Output/Stop after steps=" + std::to_string(stop_at));
+  Recorder first;
+  EXPECT_THROW(coupling::run_case(small_case(with_stop), first), coupling::RunInterrupted);
+  // the state holds what this test is about: a deformed platen and loaded stick springs
+  auto max_abs = [&](const std::string &name) {
+    double m = 0;
+    for (const double v : first.last_checkpoint.at(name))
+      m = std::max(m, std::abs(v));
+    return m;
+  };
+  EXPECT_GT(max_abs("platen_top.u"), 0.0);
+  EXPECT_GT(max_abs("contact_top.tangential_force") + max_abs("contact_bottom.tangential_force"),
+            0.0);
+  Recorder second;
+  coupling::run_case(small_case(with_stop), second, &first.last_checkpoint);
+  EXPECT_TRUE(identical(whole.rows, second.rows));
 }
 
 TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
