@@ -221,7 +221,7 @@ namespace coupling
         const double fn  = -k * hit.gap;
         hit.normal_force = fn;
         hit.energy       = 0.5 * k * hit.gap * hit.gap;
-        const auto &nrm = hit.normal;
+        const auto &nrm  = hit.normal;
         // velocity of the contact point on the face
         V3 vm{0, 0, 0};
         for (int a = 0; a < 4; ++a)

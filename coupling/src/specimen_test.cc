@@ -76,7 +76,7 @@ namespace coupling
         default:
           throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
       }
-      p.cslh   = s.cslh;
+      p.cslh = s.cslh;
       // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
       p.tssfac = std::min(s.tssfac, 1.0);
       if (s.kernel == "cubic")
@@ -461,18 +461,19 @@ namespace coupling
 
   void SpecimenTest::check_stability(RunObserver &observer)
   {
-    const auto &x      = body_->positions();
-    const auto &v      = body_->velocities();
-    const auto &h      = body_->smoothing_lengths();
-    const auto &m      = body_->masses();
-    const double c     = body_->wave_speed();
+    const auto &x        = body_->positions();
+    const auto &v        = body_->velocities();
+    const auto &h        = body_->smoothing_lengths();
+    const auto &m        = body_->masses();
+    const double c       = body_->wave_speed();
     const unsigned int n = body_->n_particles();
     // where: a particle id and position, or (i < 0) the platen named in `what`
     auto fail = [&](const std::string &what, long i, const std::string &cause) {
       std::ostringstream os;
       os << "step " << n_steps_ << ", t = " << time_ << " s: " << what;
       if (i >= 0)
-        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ") m";
+        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
+           << ") m";
       os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
          << ", t = " << last_good_time_ << " s";
       observer.last_good_state(last_good_step_, last_good_time_, last_good_);
@@ -485,9 +486,10 @@ namespace coupling
     unsigned int i_dt = 0, i_v = 0;
     for (unsigned int i = 0; i < n; ++i)
     {
-      const auto &t     = body_->stress3(i);
-      const bool finite = std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
-                          std::isfinite(t.sum() + h[i]);
+      const auto &t = body_->stress3(i);
+      const bool finite =
+        std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
+        std::isfinite(t.sum() + h[i]);
       if (!finite)
         fail("non-finite position, velocity, stress or smoothing length", i, too_large);
       if (!(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
@@ -534,10 +536,9 @@ namespace coupling
       if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
       {
         std::ostringstream os;
-        os << "non-finite state of the " << (k == 0 ? "top" : "bottom")
-           << " platen (reaction " << pl.reaction_force() << " N, kinetic energy "
-           << pl.kinetic_energy() << " J, loaded-face displacement "
-           << pl.loaded_face_displacement() << " m)";
+        os << "non-finite state of the " << (k == 0 ? "top" : "bottom") << " platen (reaction "
+           << pl.reaction_force() << " N, kinetic energy " << pl.kinetic_energy()
+           << " J, loaded-face displacement " << pl.loaded_face_displacement() << " m)";
         const std::vector<double> xc = pl.contact_positions();
         for (std::size_t j = 0; j < xc.size() / 3; ++j)
           if (!std::isfinite(xc[3 * j] + xc[3 * j + 1] + xc[3 * j + 2]))
@@ -568,7 +569,7 @@ namespace coupling
         last_good_.velocity[3 * i + d]     = v[i][d];
         last_good_.displacement[3 * i + d] = x[i][d] - x0[i][d];
       }
-      const auto &t = body_->stress3(i);
+      const auto &t      = body_->stress3(i);
       const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
       std::copy(s6, s6 + 6, last_good_.stress.begin() + 6 * i);
       last_good_.plastic_strain[i] = body_->plastic_strain(i);
@@ -790,9 +791,8 @@ namespace coupling
       const bool stop_asked = observer.stop_requested() ||
                               (prm_.output.stop_after_steps > 0 &&
                                n_steps_ == static_cast<std::size_t>(prm_.output.stop_after_steps));
-      const bool by_steps =
-        prm_.output.checkpoint_steps > 0 &&
-        n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
+      const bool by_steps = prm_.output.checkpoint_steps > 0 &&
+                            n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
       const bool by_time = prm_.output.checkpoint_minutes > 0 &&
                            std::chrono::duration<double>(now - last_checkpoint).count() >=
                              60.0 * prm_.output.checkpoint_minutes;

@@ -799,8 +799,8 @@ namespace fem
     put("Kv", im.Kv);
     put("f_ext", im.f_ext);
     put("du_prev", im.du_prev);
-    out[prefix + "scalars"] = {im.time_,    im.dt_prev, im.rigid_vz,         im.reaction,
-                               im.work,     im.dissipated, im.strain_energy_mid};
+    out[prefix + "scalars"] = {im.time_, im.dt_prev,    im.rigid_vz,         im.reaction,
+                               im.work,  im.dissipated, im.strain_energy_mid};
   }
 
   void Platen::load_state(const std::map<std::string, std::vector<double>> &in,
