@@ -7,6 +7,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -103,6 +104,9 @@ namespace coupling
       {"Output", "History rows", Kind::integer, "400", "", "about this many rows in history.csv"},
       {"Output", "Snapshots", Kind::integer, "20", "", "particle / mesh snapshots in results.h5"},
       {"Output", "Progress", Kind::boolean, "true", "", "progress display on stderr (also --quiet)"},
+      {"Output", "Checkpoint interval", Kind::integer, "0", "", "write checkpoint.h5 every this many steps; 0 = not by steps"},
+      {"Output", "Checkpoint minutes", Kind::real, "0", "", "write checkpoint.h5 every this many minutes of wall time; 0 = not by time"},
+      {"Output", "Stop after steps", Kind::integer, "0", "", "stop with a checkpoint after this step, as on SIGTERM (restart tests); 0 = never"},
     };
 
     const Key *find_key(const std::string &section, const std::string &name)
@@ -470,11 +474,13 @@ namespace coupling
       std::string case_path_;
     };
 
+    /// The shortest text that reads back as the same double: used_parameters.prm repeats a run
+    /// (and a --restart continues it) bit for bit.
     std::string format(double v)
     {
       char buffer[64];
-      std::snprintf(buffer, sizeof buffer, "%.10g", v);
-      return buffer;
+      const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+      return std::string(buffer, r.ptr);
     }
 
     std::string mm(double v) { return format(v * 1e3) + " mm"; }
@@ -708,6 +714,13 @@ namespace coupling
     r.require(p.output.n_history_rows >= 2 && p.output.n_history_rows <= 10000000, "Output/History rows",
               "must be in [2, 10000000]");
     r.require(p.output.n_snapshots >= 0 && p.output.n_snapshots <= 100000, "Output/Snapshots", "must be in [0, 100000]");
+    p.output.checkpoint_steps = r.integer("Output/Checkpoint interval");
+    p.output.checkpoint_minutes = r.real("Output/Checkpoint minutes");
+    p.output.stop_after_steps = r.integer("Output/Stop after steps");
+    r.require(p.output.checkpoint_steps >= 0, "Output/Checkpoint interval", "must be >= 0 steps (0 = no periodic checkpoints)");
+    r.require(p.output.checkpoint_minutes >= 0 && p.output.checkpoint_minutes <= 1e6, "Output/Checkpoint minutes",
+              "must be in [0, 1e6] minutes (0 = no timed checkpoints)");
+    r.require(p.output.stop_after_steps >= 0, "Output/Stop after steps", "must be >= 0 (0 = never)");
 
     // used_parameters.prm: the final values, the group's included
     r.set("Test/Name", p.name);

@@ -202,7 +202,9 @@ namespace coupling
     std::size_t n_contact = 0, n_slide = 0;
 
     // Gather: each particle finds its face and its force independently (no shared writes).
-#pragma omp parallel for schedule(static) reduction(+ : fn_sum, energy, dissipated, n_contact, n_slide)
+    // The floating-point sums are taken afterwards in particle order: an OpenMP reduction
+    // combines the threads' partial sums in arrival order, which is not reproducible bitwise.
+#pragma omp parallel for schedule(static) reduction(+ : n_contact, n_slide)
     for (long i = 0; i < n; ++i)
     {
       Hit hit           = find_face(pt.position + 3 * i, s);
@@ -217,10 +219,10 @@ namespace coupling
       else
       {
         ++n_contact;
-        const double fn = -k * hit.gap;
-        fn_sum += fn;
-        energy += 0.5 * k * hit.gap * hit.gap;
-        const auto &nrm = hit.normal;
+        const double fn  = -k * hit.gap;
+        hit.normal_force = fn;
+        hit.energy       = 0.5 * k * hit.gap * hit.gap;
+        const auto &nrm  = hit.normal;
         // velocity of the contact point on the face
         V3 vm{0, 0, 0};
         for (int a = 0; a < 4; ++a)
@@ -247,7 +249,7 @@ namespace coupling
             fr.sliding = true;
             ++n_slide;
             // friction dissipation: -f_t . v_t dt (f_t opposes the slip)
-            dissipated += std::max(0.0, -dot(ft, vt) * dt);
+            hit.dissipated = std::max(0.0, -dot(ft, vt) * dt);
           }
           else
           {
@@ -255,7 +257,7 @@ namespace coupling
             fr.sliding = false;
           }
           fr.tangential_force = ft;
-          energy += 0.5 * dot(ft, ft) / k; // the stick spring's elastic energy
+          hit.energy += 0.5 * dot(ft, ft) / k; // the stick spring's elastic energy
         }
         for (int d = 0; d < 3; ++d)
           f[d] = fn * nrm[d] + ft[d];
@@ -270,6 +272,9 @@ namespace coupling
       const Hit &hit = hits_[i];
       if (hit.face < 0)
         continue;
+      fn_sum += hit.normal_force;
+      energy += hit.energy;
+      dissipated += hit.dissipated;
       const auto &f = particle_force_[i];
       for (int d = 0; d < 3; ++d)
         force_on_particles[3 * i + d] += f[d];

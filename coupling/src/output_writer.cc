@@ -268,6 +268,65 @@ namespace coupling
     m.snapshots.push_back(std::move(info));
   }
 
+  std::size_t ResultsFile::copy_snapshots(const std::string &h5_path, double until)
+  {
+    Impl &m = *impl_;
+    const hid_t old = H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (old < 0)
+      return 0;
+    auto rows = [&](const std::string &dataset) -> std::size_t {
+      const hid_t d = H5Dopen2(old, dataset.c_str(), H5P_DEFAULT);
+      if (d < 0)
+        return 0;
+      const hid_t space = H5Dget_space(d);
+      hsize_t dims[2]   = {0, 0};
+      if (space >= 0 && H5Sget_simple_extent_ndims(space) >= 1 && H5Sget_simple_extent_ndims(space) <= 2)
+        H5Sget_simple_extent_dims(space, dims, nullptr);
+      if (space >= 0)
+        H5Sclose(space);
+      H5Dclose(d);
+      return dims[0];
+    };
+    std::size_t copied = 0;
+    const bool any     = H5Lexists(old, "/snapshots", H5P_DEFAULT) > 0;
+    for (std::size_t k = 0; any; ++k)
+    {
+      char from[32], to[32];
+      std::snprintf(from, sizeof from, "/snapshots/%06zu", k);
+      if (H5Lexists(old, from, H5P_DEFAULT) <= 0)
+        break;
+      double time   = 0;
+      const hid_t a = H5Aopen_by_name(old, from, "time_s", H5P_DEFAULT, H5P_DEFAULT);
+      const bool ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &time) >= 0;
+      if (a >= 0)
+        H5Aclose(a);
+      if (!ok || time > until)
+        break;
+      std::snprintf(to, sizeof to, "/snapshots/%06zu", m.snapshots.size());
+      Impl::SnapshotInfo info{time, to, rows(std::string(from) + "/particles/position"), {}};
+      const std::string meshes = std::string(from) + "/meshes";
+      const hid_t g            = H5Gopen2(old, meshes.c_str(), H5P_DEFAULT);
+      H5G_info_t gi{};
+      if (g >= 0 && H5Gget_info(g, &gi) >= 0)
+        for (hsize_t j = 0; j < gi.nlinks; ++j)
+        {
+          char name[256];
+          if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, j, name, sizeof name, H5P_DEFAULT) <= 0)
+            continue;
+          const std::string base = meshes + "/" + name;
+          info.meshes.push_back({name, rows(base + "/position"), rows(base + "/hexahedra")});
+        }
+      if (g >= 0)
+        H5Gclose(g);
+      if (H5Ocopy(old, from, m.file, to, H5P_DEFAULT, H5P_DEFAULT) < 0)
+        break;
+      m.snapshots.push_back(std::move(info));
+      ++copied;
+    }
+    H5Fclose(old);
+    return copied;
+  }
+
   void ResultsFile::write_history(const std::vector<HistoryRow> &rows)
   {
     Impl &m = *impl_;

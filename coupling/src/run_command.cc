@@ -1,4 +1,5 @@
 #include <coupling/case_file.h>
+#include <coupling/checkpoint.h>
 #include <coupling/cli.h>
 #include <coupling/output_writer.h>
 #include <coupling/progress.h>
@@ -6,9 +7,11 @@
 #include <coupling/run_command.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <unistd.h>
 
 namespace coupling
@@ -17,14 +20,88 @@ namespace coupling
 
   namespace
   {
-    /// Keeps the history in memory, streams snapshots into results.h5, shows progress.
+    /// Set by SIGINT / SIGTERM, polled by the time loop once per step (async-signal-safe).
+    volatile std::sig_atomic_t stop_signal = 0;
+
+    extern "C" void on_stop_signal(int signal)
+    {
+      stop_signal = signal;
+    }
+
+    /// Installs the stop handlers for the lifetime of a run; a second signal of the same kind
+    /// ends the process at once (SA_RESETHAND), for a user who cannot wait for the checkpoint.
+    class StopSignals
+    {
+    public:
+      StopSignals()
+      {
+        stop_signal = 0;
+        struct sigaction sa = {};
+        sa.sa_handler       = on_stop_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESETHAND;
+        sigaction(SIGINT, &sa, &old_int_);
+        sigaction(SIGTERM, &sa, &old_term_);
+      }
+      ~StopSignals()
+      {
+        sigaction(SIGINT, &old_int_, nullptr);
+        sigaction(SIGTERM, &old_term_, nullptr);
+      }
+      StopSignals(const StopSignals &)            = delete;
+      StopSignals &operator=(const StopSignals &) = delete;
+
+    private:
+      struct sigaction old_int_ = {}, old_term_ = {};
+    };
+
+    std::string json_string(const std::string &s)
+    {
+      std::string out = "\"";
+      for (const char c : s)
+      {
+        if (c == '"' || c == '\\')
+          out += '\\';
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned char>(c));
+          out += buf;
+        }
+        else
+          out += c;
+      }
+      return out + "\"";
+    }
+
+    /// Keeps the history in memory, streams snapshots into results.h5, shows progress, writes
+    /// checkpoints and the last good state into the staging folder.
     class RecordingObserver : public RunObserver
     {
     public:
-      RecordingObserver(ResultsFile &results, ProgressDisplay &progress)
+      RecordingObserver(ResultsFile &results, ProgressDisplay &progress, const fs::path &folder)
         : results_(results)
         , progress_(progress)
+        , folder_(folder)
       {}
+
+      bool stop_requested() override { return stop_signal != 0; }
+      void checkpoint(std::size_t step, const StateArrays &state) override
+      {
+        write_checkpoint((folder_ / "checkpoint.h5").string(), state);
+        checkpoint_step = static_cast<long>(step);
+      }
+      void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) override
+      {
+        ResultsFile good((folder_ / "last_good_state.h5").string());
+        good.add_snapshot(time, particles, {});
+        good.close((folder_ / "last_good_state.xdmf").string());
+        good_step = static_cast<long>(step);
+        good_time = time;
+      }
+
+      long checkpoint_step = -1, good_step = -1;
+      double good_time = 0;
 
       void progress(std::size_t step, double time, double fraction) override
       {
@@ -41,6 +118,7 @@ namespace coupling
     private:
       ResultsFile &results_;
       ProgressDisplay &progress_;
+      fs::path folder_;
     };
 
     struct RunOptions
@@ -48,6 +126,7 @@ namespace coupling
       std::string case_file;
       std::string output;
       std::vector<std::string> overrides;
+      std::string restart; ///< --restart DIR
       bool force = false;
       bool quiet = false;
     };
@@ -63,19 +142,33 @@ namespace coupling
           o.output = cursor.value(a);
         else if (a == "--set")
           o.overrides.push_back(cursor.value(a));
+        else if (a == "--restart")
+          o.restart = cursor.value(a);
         else if (a == "--force")
           o.force = true;
         else if (a == "--quiet" || a == "-q")
           o.quiet = true;
         else if (!a.empty() && a[0] == '-')
           throw InputError("cosim run: unknown option '" + a + "'" +
-                           did_you_mean(a, {"--output", "--set", "--force", "--quiet", "--help"}) +
-                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --force, --quiet");
+                           did_you_mean(a, {"--output", "--set", "--restart", "--force", "--quiet", "--help"}) +
+                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --force, --quiet");
         else if (o.case_file.empty())
           o.case_file = a;
         else
           throw InputError("cosim run: a second case file '" + a + "' (after '" + o.case_file +
                            "'); run takes one CASE.prm");
+      }
+      if (!o.restart.empty())
+      {
+        if (!o.case_file.empty() || !o.overrides.empty())
+          throw InputError("cosim run --restart " + o.restart +
+                           ": takes no case file and no --set (the run continues with the "
+                           "parameters in " + o.restart + "/used_parameters.prm)");
+        o.case_file = (fs::path(o.restart) / "used_parameters.prm").string();
+        if (!fs::is_regular_file(o.case_file))
+          throw InputError("cosim run --restart " + o.restart + ": no used_parameters.prm there; "
+                           "give the output folder of an interrupted run");
+        return o;
       }
       if (o.case_file.empty())
         throw InputError("cosim run: no case file; usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\"]");
@@ -91,7 +184,9 @@ namespace coupling
       std::error_code ec;
       if (fs::exists(target, ec) && !fs::is_directory(target, ec))
         throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
-      if (fs::exists(target, ec) && !o.force)
+      const bool own_restart =
+        !o.restart.empty() && fs::equivalent(target, fs::path(o.restart), ec);
+      if (fs::exists(target, ec) && !o.force && !own_restart)
         throw InputError("output folder " + target.string() +
                          " already exists; use --force to replace it, or -o to choose another");
       // the nearest existing ancestor must be a writable folder
@@ -139,6 +234,7 @@ namespace coupling
   std::string run_help()
   {
     return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] [--quiet]\n"
+           "       cosim run --restart OUTDIR [-o NEWDIR] [--quiet]\n"
            "\n"
            "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case stem>):\n"
            "  summary.json         peak stress and force, modulus, Poisson's ratio, energy checks\n"
@@ -151,14 +247,20 @@ namespace coupling
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
            "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set \"SPH/Particle spacing=0.002\"\n"
            "  --force              replace an existing OUTDIR (only once the run has succeeded)\n"
+           "  --restart OUTDIR     continue an interrupted run from OUTDIR/checkpoint.h5 with\n"
+           "                       OUTDIR/used_parameters.prm (into OUTDIR unless -o)\n"
            "  -q, --quiet          no progress display\n"
            "\n"
            "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, so a\n"
            "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
            "has in OUTDIR.failed.\n"
            "\n"
-           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run,\n"
-           "1 other failure.\n"
+           "SIGINT / SIGTERM: the run stops after the current step, writes checkpoint.h5 and what it\n"
+           "has into OUTDIR, and exits with 4 (a second signal kills at once). Periodic checkpoints:\n"
+           "Output/Checkpoint interval (steps), Output/Checkpoint minutes.\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run\n"
+           "(OUTDIR.failed with last_good_state.h5), 4 interrupted (checkpoint written), 1 other failure.\n"
            "\n"
            "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end),\n"
            "SI units, [default]:\n" +
@@ -167,9 +269,14 @@ namespace coupling
 
   int run_main(const std::vector<std::string> &args)
   {
-    const RunOptions options = parse_options(args);
+    RunOptions options = parse_options(args);
     const CaseFile case_file = read_case_file(options.case_file, options.overrides);
+    if (!options.restart.empty() && options.output.empty())
+      options.output = options.restart; // a restart continues into its own folder
     const fs::path target = check_output_folder(options, fs::path(options.case_file).stem().string());
+    StateArrays resume;
+    if (!options.restart.empty())
+      resume = read_checkpoint((fs::path(options.restart) / "checkpoint.h5").string());
     for (const auto &w : case_file.warnings)
       std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
 
@@ -196,7 +303,15 @@ namespace coupling
       write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
       ResultsFile results((staging / "results.h5").string());
       ProgressDisplay progress(case_file.parameters.output.progress && !options.quiet);
-      RecordingObserver observer(results, progress);
+      if (!options.restart.empty())
+      {
+        // the interrupted run's snapshots up to its checkpoint come first
+        const auto scalars = resume.find("driver.scalars");
+        if (scalars != resume.end() && !scalars->second.empty())
+          results.copy_snapshots((fs::path(options.restart) / "results.h5").string(), scalars->second[0]);
+      }
+      RecordingObserver observer(results, progress, staging);
+      const StopSignals stop_signals;
       const auto start = std::chrono::steady_clock::now();
       auto write_all = [&](const Summary *summary) {
         if (summary)
@@ -214,7 +329,8 @@ namespace coupling
       };
       try
       {
-        Summary summary = run_case(case_file.parameters, observer);
+        Summary summary =
+          run_case(case_file.parameters, observer, options.restart.empty() ? nullptr : &resume);
         progress.finish();
         if (summary.wall_seconds <= 0)
           summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -230,6 +346,16 @@ namespace coupling
         progress.finish();
         write_all(nullptr);
         write_text_file((staging / "failure.txt").string(), std::string(e.what()) + "\n");
+        std::ostringstream json;
+        json << "{\n  \"status\": \"unstable\",\n  \"message\": " << json_string(e.what())
+             << ",\n  \"last_good_state\": ";
+        if (observer.good_step >= 0)
+          json << "{\"file\": \"last_good_state.h5\", \"xdmf\": \"last_good_state.xdmf\", "
+               << "\"step\": " << observer.good_step << ", \"time_s\": " << observer.good_time << "}";
+        else
+          json << "null";
+        json << "\n}\n";
+        write_text_file((staging / "summary.json").string(), json.str());
         fs::path failed = target;
         failed += ".failed";
         if (fs::exists(failed))
@@ -242,6 +368,21 @@ namespace coupling
         fs::rename(staging, failed);
         std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(), failed.c_str());
         return 3;
+      }
+      catch (const RunInterrupted &e)
+      {
+        progress.finish();
+        write_all(nullptr);
+        std::ostringstream json;
+        json << "{\n  \"status\": \"interrupted\",\n  \"message\": " << json_string(e.what())
+             << ",\n  \"n_steps\": " << observer.checkpoint_step
+             << ",\n  \"checkpoint\": \"checkpoint.h5\",\n  \"restart\": "
+             << json_string("cosim run --restart " + target.string()) << "\n}\n";
+        write_text_file((staging / "summary.json").string(), json.str());
+        publish(staging, target);
+        std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
+                     e.what(), (target / "checkpoint.h5").c_str(), target.c_str());
+        return 4;
       }
     }
     catch (...)

@@ -8,6 +8,7 @@
 #include <sph/lattice.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -75,8 +76,9 @@ namespace coupling
         default:
           throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
       }
-      p.cslh   = s.cslh;
-      p.tssfac = s.tssfac;
+      p.cslh = s.cslh;
+      // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
+      p.tssfac = std::min(s.tssfac, 1.0);
       if (s.kernel == "cubic")
         p.kernel = sph::KernelType::cubic_spline;
       else if (s.kernel == "wendland")
@@ -212,6 +214,13 @@ namespace coupling
     const std::size_t n = body_->n_particles();
     force_on_particles_.assign(3 * n, 0.0);
     domain_size_ = 3.0 * std::max(prm_.diameter, prm_.length);
+    // kinetic-energy bound of the stability check: a stable run never holds more kinetic energy
+    // than the work done on it (energy balance); the floor covers the start, when that work is
+    // still tiny: the whole rock moving at the final platen speed
+    double rock_mass = 0;
+    for (const double m : body_->masses())
+      rock_mass += m;
+    energy_floor_ = 0.5 * rock_mass * plan_.platen_speed * plan_.platen_speed;
   }
 
   void SpecimenTest::build_platens()
@@ -278,7 +287,8 @@ namespace coupling
 
   void SpecimenTest::choose_time_step()
   {
-    const double dt_sph = body_->stable_time_step();
+    time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
+    const double dt_sph = body_->stable_time_step() * time_step_scale_;
     dt_                 = dt_sph;
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
@@ -472,26 +482,222 @@ namespace coupling
     return r;
   }
 
-  void SpecimenTest::check_stability() const
+  void SpecimenTest::check_stability(RunObserver &observer)
   {
-    const auto &x = body_->positions();
-    const auto &v = body_->velocities();
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+    const auto &x        = body_->positions();
+    const auto &v        = body_->velocities();
+    const auto &h        = body_->smoothing_lengths();
+    const auto &m        = body_->masses();
+    const double c       = body_->wave_speed();
+    const unsigned int n = body_->n_particles();
+    // where: a particle id and position, or (i < 0) the platen named in `what`
+    auto fail = [&](const std::string &what, long i, const std::string &cause) {
+      std::ostringstream os;
+      os << "step " << n_steps_ << ", t = " << time_ << " s: " << what;
+      if (i >= 0)
+        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
+           << ") m";
+      os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
+         << ", t = " << last_good_time_ << " s";
+      observer.last_good_state(last_good_step_, last_good_time_, last_good_);
+      throw InstabilityError(os.str());
+    };
+    const std::string too_large =
+      "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
+      "near 1) or a loading rate far above quasi-static";
+    double kinetic = 0, dt_min = 1e300, v_max = 0;
+    unsigned int i_dt = 0, i_v = 0;
+    for (unsigned int i = 0; i < n; ++i)
     {
-      const bool finite = std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]);
-      const bool inside = std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
-                          std::abs(x[i][2]) < domain_size_;
-      if (!finite || !inside)
+      const auto &t = body_->stress3(i);
+      const bool finite =
+        std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
+        std::isfinite(t.sum() + h[i]);
+      if (!finite)
+        fail("non-finite position, velocity, stress or smoothing length", i, too_large);
+      if (!(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
+            std::abs(x[i][2]) < domain_size_))
+        fail("a particle left the domain (|x| >= " + std::to_string(domain_size_) + " m)", i,
+             too_large + ", or a platen that lost contact");
+      const double speed = v[i].norm();
+      kinetic += 0.5 * m[i] * speed * speed;
+      if (speed > v_max)
       {
-        std::ostringstream os;
-        os << "step " << n_steps_ << ", t = " << time_ << " s: particle " << i
-           << (finite ? " left the domain" : " has a non-finite position or velocity") << " at ("
-           << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
-           << ") m; likely cause: a time step above the stable limit (SPH/TSSFAC, "
-              "Platens/Contact stiffness scale) or a loading rate far above quasi-static";
-        throw InstabilityError(os.str());
+        v_max = speed;
+        i_v   = i;
+      }
+      const double dt_i = h[i] / (c + speed);
+      if (dt_i < dt_min)
+      {
+        dt_min = dt_i;
+        i_dt   = i;
       }
     }
+    const double work = std::max(0.0, frame_work_ + pressure_work_);
+    if (kinetic > 10.0 * (work + energy_floor_))
+    {
+      std::ostringstream os;
+      os << "rock kinetic energy " << kinetic << " J above ten times the work done on it plus "
+         << "the start-up allowance (" << work << " + " << energy_floor_
+         << " J), fastest particle |v| = " << v_max << " m/s";
+      fail(os.str(), i_v, too_large);
+    }
+    // the step in use is fixed; the stable one shrinks when particles approach the wave speed or
+    // smoothing lengths collapse
+    const double dt_stable = prm_.sph.tssfac * dt_min;
+    if (dt_stable < 0.5 * dt_)
+    {
+      std::ostringstream os;
+      os << "collapsing time step: the stable step " << dt_stable << " s fell below half the step "
+         << "in use " << dt_ << " s (|v| = " << v[i_dt].norm() << " m/s, h = " << h[i_dt] << " m)";
+      fail(os.str(), i_dt, too_large);
+    }
+    const std::array<const fem::Platen *, 2> platens{{top_.get(), bottom_.get()}};
+    for (int k = 0; k < 2; ++k)
+    {
+      const fem::Platen &pl = *platens[k];
+      if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
+      {
+        std::ostringstream os;
+        os << "non-finite state of the " << (k == 0 ? "top" : "bottom") << " platen (reaction "
+           << pl.reaction_force() << " N, kinetic energy " << pl.kinetic_energy()
+           << " J, loaded-face displacement " << pl.loaded_face_displacement() << " m)";
+        const std::vector<double> xc = pl.contact_positions();
+        for (std::size_t j = 0; j < xc.size() / 3; ++j)
+          if (!std::isfinite(xc[3 * j] + xc[3 * j + 1] + xc[3 * j + 2]))
+          {
+            os << ", first non-finite contact node " << j;
+            break;
+          }
+        fail(os.str(), -1,
+             "a platen time step above its stable limit or a contact stiffness near its bound "
+             "(Platens/Contact stiffness scale)");
+      }
+    }
+
+    // the state passed: keep it as the last good one (buffers reused, no allocation per step)
+    last_good_.n = n;
+    last_good_.position.resize(3 * n);
+    last_good_.velocity.resize(3 * n);
+    last_good_.displacement.resize(3 * n);
+    last_good_.stress.resize(6 * n);
+    last_good_.plastic_strain.resize(n);
+    last_good_.damage.resize(n);
+    const auto &x0 = body_->reference_positions();
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        last_good_.position[3 * i + d]     = x[i][d];
+        last_good_.velocity[3 * i + d]     = v[i][d];
+        last_good_.displacement[3 * i + d] = x[i][d] - x0[i][d];
+      }
+      const auto &t      = body_->stress3(i);
+      const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
+      std::copy(s6, s6 + 6, last_good_.stress.begin() + 6 * i);
+      last_good_.plastic_strain[i] = body_->plastic_strain(i);
+      last_good_.damage[i]         = body_->damage(i);
+    }
+    last_good_step_ = n_steps_;
+    last_good_time_ = time_;
+  }
+
+  namespace
+  {
+    constexpr std::size_t history_width = 13;
+    void append_row(std::vector<double> &out, const HistoryRow &r)
+    {
+      out.insert(out.end(), {r.time, r.displacement, r.force, r.force_bottom, r.stress, r.strain,
+                             r.axial_gauge_strain, r.radial_strain, r.kinetic_energy,
+                             r.internal_energy, r.dissipated_energy, r.external_work, r.n_failed});
+    }
+    HistoryRow row_at(const std::vector<double> &a, std::size_t k)
+    {
+      const double *p = a.data() + history_width * k;
+      HistoryRow r;
+      r.time               = p[0];
+      r.displacement       = p[1];
+      r.force              = p[2];
+      r.force_bottom       = p[3];
+      r.stress             = p[4];
+      r.strain             = p[5];
+      r.axial_gauge_strain = p[6];
+      r.radial_strain      = p[7];
+      r.kinetic_energy     = p[8];
+      r.internal_energy    = p[9];
+      r.dissipated_energy  = p[10];
+      r.external_work      = p[11];
+      r.n_failed           = p[12];
+      return r;
+    }
+  } // namespace
+
+  void SpecimenTest::save_state(StateArrays &out) const
+  {
+    body_->save_state(out, "body.");
+    top_->save_state(out, "platen_top.");
+    bottom_->save_state(out, "platen_bottom.");
+    contact_top_->save_state(out, "contact_top.");
+    contact_bottom_->save_state(out, "contact_bottom.");
+    out["driver.scalars"] = {time_,
+                             static_cast<double>(n_steps_),
+                             frame_work_,
+                             pressure_work_,
+                             next_row_,
+                             next_snap_,
+                             peak_force_,
+                             armed_ ? 1.0 : 0.0,
+                             dt_,
+                             static_cast<double>(n_substeps_),
+                             static_cast<double>(body_->n_particles())};
+    std::vector<double> history;
+    history.reserve(history_width * rows_.size());
+    for (const auto &r : rows_)
+      append_row(history, r);
+    out["driver.history"] = std::move(history);
+  }
+
+  void SpecimenTest::load_state(const StateArrays &in)
+  {
+    const auto s = in.find("driver.scalars");
+    const auto h = in.find("driver.history");
+    if (s == in.end() || s->second.size() != 11 || h == in.end() ||
+        h->second.size() % history_width != 0)
+      throw InputError("checkpoint: no driver state (driver.scalars, driver.history); not a "
+                       "checkpoint of cosim run");
+    const auto &d = s->second;
+    // the same case gives the same particle count, time step and sub-cycling, bit for bit
+    if (d[10] != body_->n_particles() || d[8] != dt_ || d[9] != n_substeps_)
+    {
+      std::ostringstream os;
+      os << "checkpoint: it holds " << d[10] << " particles at dt = " << d[8]
+         << " s, this case has " << body_->n_particles() << " at dt = " << dt_
+         << " s; restart with the case's own used_parameters.prm";
+      throw InputError(os.str());
+    }
+    try
+    {
+      body_->load_state(in, "body.");
+      top_->load_state(in, "platen_top.");
+      bottom_->load_state(in, "platen_bottom.");
+      contact_top_->load_state(in, "contact_top.");
+      contact_bottom_->load_state(in, "contact_bottom.");
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(std::string("checkpoint: ") + e.what());
+    }
+    time_          = d[0];
+    n_steps_       = static_cast<std::size_t>(d[1]);
+    frame_work_    = d[2];
+    pressure_work_ = d[3];
+    next_row_      = d[4];
+    next_snap_     = d[5];
+    peak_force_    = d[6];
+    armed_         = d[7] != 0.0;
+    rows_.clear();
+    for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
+      rows_.push_back(row_at(h->second, k));
   }
 
   ParticleSnapshot SpecimenTest::particle_snapshot() const
@@ -538,7 +744,7 @@ namespace coupling
     return out;
   }
 
-  Summary SpecimenTest::run(RunObserver &observer)
+  Summary SpecimenTest::run(RunObserver &observer, const StateArrays *resume)
   {
     const auto wall_start = std::chrono::steady_clock::now();
     const double t_plan =
@@ -547,41 +753,45 @@ namespace coupling
       plan_.confinement_time + plan_.ramp_time * 0.5 + prm_.loading.end_strain / plan_.strain_rate;
     const double row_interval  = t_plan / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_plan / std::max(1, prm_.output.n_snapshots);
-    double next_row = 0, next_snap = 0;
 
-    std::vector<HistoryRow> rows;
-    double peak_force       = 0;
-    bool armed              = false;
+    if (resume)
+    {
+      load_state(*resume);
+      for (const auto &r : rows_)
+        observer.history(r);
+    }
+    check_stability(observer); // the start (or the restored state) is the first good state
+
+    auto last_checkpoint    = std::chrono::steady_clock::now();
+    const auto &rows        = rows_;
     bool stop               = false;
     std::string stop_reason = "end strain";
     while (!stop)
     {
       step();
-      if (n_steps_ % 50 == 0)
-        check_stability();
+      check_stability(observer);
       const bool last = time_ >= t_end;
-      if (time_ >= next_row || last)
+      if (time_ >= next_row_ || last)
       {
-        check_stability();
         const HistoryRow r = measure();
         if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
           throw InstabilityError("step " + std::to_string(n_steps_) +
                                  ": non-finite platen force or energy; likely cause: a time step "
                                  "above the stable limit");
-        rows.push_back(r);
+        rows_.push_back(r);
         observer.history(r);
-        next_row += row_interval;
+        next_row_ += row_interval;
         const bool loading = time_ > plan_.confinement_time;
         // the load the specimen carries: mean of both load cells (the stress wave that crosses
         // the specimen at the start makes each one oscillate on its own)
         const double load = 0.5 * (r.force + r.force_bottom);
-        peak_force        = loading ? std::max(peak_force, load) : peak_force;
+        peak_force_       = loading ? std::max(peak_force_, load) : peak_force_;
         // the failure criterion is armed once the specimen yields somewhere or has passed half of
         // its expected failure strain, so that the start-up transient cannot end the run
-        armed = armed || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
+        armed_ = armed_ || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
         // the load has fallen past the post-peak drop: the specimen has failed
-        if (loading && armed && peak_force > 0 &&
-            load < (1.0 - prm_.loading.post_peak_drop) * peak_force)
+        if (loading && armed_ && peak_force_ > 0 &&
+            load < (1.0 - prm_.loading.post_peak_drop) * peak_force_)
         {
           stop        = true;
           stop_reason = "post-peak drop";
@@ -589,13 +799,39 @@ namespace coupling
         if (last)
           stop = true;
       }
-      if (time_ >= next_snap || stop)
+      if (time_ >= next_snap_ || stop)
       {
         observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-        next_snap += snap_interval;
+        next_snap_ += snap_interval;
       }
       if (n_steps_ % 20 == 0 || stop)
         observer.progress(n_steps_, time_, std::min(1.0, time_ / t_plan));
+      if (stop)
+        break;
+
+      // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
+      const auto now        = std::chrono::steady_clock::now();
+      const bool stop_asked = observer.stop_requested() ||
+                              (prm_.output.stop_after_steps > 0 &&
+                               n_steps_ == static_cast<std::size_t>(prm_.output.stop_after_steps));
+      const bool by_steps = prm_.output.checkpoint_steps > 0 &&
+                            n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
+      const bool by_time = prm_.output.checkpoint_minutes > 0 &&
+                           std::chrono::duration<double>(now - last_checkpoint).count() >=
+                             60.0 * prm_.output.checkpoint_minutes;
+      if (stop_asked || by_steps || by_time)
+      {
+        StateArrays state;
+        save_state(state);
+        observer.checkpoint(n_steps_, state);
+        last_checkpoint = now;
+      }
+      if (stop_asked)
+      {
+        std::ostringstream os;
+        os << "stopped on request after step " << n_steps_ << ", t = " << time_ << " s";
+        throw RunInterrupted(os.str());
+      }
     }
 
     // ---- what the laboratory reads off the curves
@@ -688,9 +924,10 @@ namespace coupling
     return s;
   }
 
-  Summary run_case(const CaseParameters &parameters, RunObserver &observer)
+  Summary run_case(const CaseParameters &parameters, RunObserver &observer,
+                   const StateArrays *resume)
   {
     SpecimenTest test(parameters);
-    return test.run(observer);
+    return test.run(observer, resume);
   }
 } // namespace coupling

@@ -48,7 +48,12 @@ namespace coupling
   public:
     explicit SpecimenTest(const CaseParameters &parameters);
     ~SpecimenTest();
-    Summary run(RunObserver &observer);
+    /// Runs to the stop criterion; with `resume`, first restores that state (see run_case).
+    Summary run(RunObserver &observer, const StateArrays *resume = nullptr);
+    /// The full state after the current step (body, platens, contacts, driver, history so far).
+    void save_state(StateArrays &out) const;
+    /// Restores save_state's arrays; InputError when they belong to another case.
+    void load_state(const StateArrays &in);
 
   private:
     void build_specimen();
@@ -58,7 +63,10 @@ namespace coupling
     double top_velocity(double t) const;
     void step();
     HistoryRow measure() const;
-    void check_stability() const;
+    /// Every step: non-finite values, particles leaving the domain, kinetic energy past its
+    /// bound, a collapsing stable time step. On failure reports the last good state to `observer`
+    /// and throws InstabilityError; otherwise keeps the current state as the last good one.
+    void check_stability(RunObserver &observer);
     ParticleSnapshot particle_snapshot() const;
     std::vector<MeshSnapshot> mesh_snapshots() const;
 
@@ -79,5 +87,15 @@ namespace coupling
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
     double gauge_length0_ = 0;
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
+    // run-loop state, members so that a checkpoint holds them
+    std::vector<HistoryRow> rows_;
+    double next_row_ = 0, next_snap_ = 0, peak_force_ = 0;
+    bool armed_ = false;
+    // stability checks: dt_ = stable step * time_step_scale_ (TSSFAC above 1: the body is built
+    // with TSSFAC 1 and the driver scales its step, so that an unstable step can be injected)
+    double time_step_scale_ = 1, energy_floor_ = 0;
+    ParticleSnapshot last_good_;
+    std::size_t last_good_step_ = 0;
+    double last_good_time_ = 0;
   };
 } // namespace coupling

@@ -784,4 +784,54 @@ namespace fem
     im.du_prev = 0.0;
     im.dt_prev = 0.0;
   }
+
+  // ---- checkpoints (issue 9): every member of Impl that step() changes ----------------------
+  void Platen::save_state(std::map<std::string, std::vector<double>> &out,
+                          const std::string &prefix) const
+  {
+    const Impl &im = *impl_;
+    auto put       = [&](const char *name, const Vector<double> &x) {
+      out[prefix + name] = std::vector<double>(x.begin(), x.end());
+    };
+    put("u", im.u);
+    put("v", im.v);
+    put("Ku", im.Ku);
+    put("Kv", im.Kv);
+    put("f_ext", im.f_ext);
+    put("du_prev", im.du_prev);
+    out[prefix + "scalars"] = {im.time_, im.dt_prev,    im.rigid_vz,         im.reaction,
+                               im.work,  im.dissipated, im.strain_energy_mid};
+  }
+
+  void Platen::load_state(const std::map<std::string, std::vector<double>> &in,
+                          const std::string &prefix)
+  {
+    Impl &im  = *impl_;
+    auto find = [&](const char *name, std::size_t size) -> const std::vector<double> & {
+      const auto it = in.find(prefix + name);
+      if (it == in.end() || it->second.size() != size)
+        throw std::invalid_argument("platen state: array '" + prefix + name +
+                                    (it == in.end() ? "' missing" : "' has the wrong size") +
+                                    " (a checkpoint of another case?)");
+      return it->second;
+    };
+    auto get = [&](const char *name, Vector<double> &x) {
+      const auto &a = find(name, x.size());
+      std::copy(a.begin(), a.end(), x.begin());
+    };
+    get("u", im.u);
+    get("v", im.v);
+    get("Ku", im.Ku);
+    get("Kv", im.Kv);
+    get("f_ext", im.f_ext);
+    get("du_prev", im.du_prev);
+    const auto &s        = find("scalars", 7);
+    im.time_             = s[0];
+    im.dt_prev           = s[1];
+    im.rigid_vz          = s[2];
+    im.reaction          = s[3];
+    im.work              = s[4];
+    im.dissipated        = s[5];
+    im.strain_energy_mid = s[6];
+  }
 } // namespace fem

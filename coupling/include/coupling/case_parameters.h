@@ -72,6 +72,9 @@ namespace coupling
     int n_history_rows = 400;  ///< about this many history rows over the load path
     int n_snapshots = 20;      ///< particle / mesh snapshots over the load path
     bool progress = true;      ///< progress display on stderr
+    int checkpoint_steps = 0;  ///< write checkpoint.h5 every this many steps; 0 = not by steps
+    double checkpoint_minutes = 0; ///< ... and/or every this many minutes of wall time; 0 = not
+    long stop_after_steps = 0; ///< stop with a checkpoint after this step (restart tests); 0 = no
   };
 
   /// One case: the test, the specimen, and the parts.

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstddef>
 #include <utility>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace coupling
@@ -82,6 +84,12 @@ namespace coupling
     /// Particles that slid in the last apply().
     std::size_t n_sliding() const { return n_sliding_; }
 
+    /// Adds the friction history (stick springs, sliding flags) and the energy accounts to `out`
+    /// as flat arrays named `prefix` + name (checkpoints). Defined in contact_state.cc.
+    void save_state(std::map<std::string, std::vector<double>> &out, const std::string &prefix) const;
+    /// Restores what save_state wrote; std::invalid_argument on a missing or mis-sized array.
+    void load_state(const std::map<std::string, std::vector<double>> &in, const std::string &prefix);
+
   private:
     struct Hit
     {
@@ -89,6 +97,9 @@ namespace coupling
       double gap = 0;                 ///< signed distance beyond the contact radius [m]
       std::array<double, 4> weight{}; ///< shape-function weights of the face nodes
       std::array<double, 3> normal{}; ///< unit, out of the platen
+      double normal_force = 0;        ///< [N], this particle's share of normal_force()
+      double energy       = 0;        ///< penalty + stick-spring energy [J]
+      double dissipated   = 0;        ///< friction work of this apply() [J]
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
     void build_face_grid(const ContactSurface &surface);

@@ -44,6 +44,10 @@ namespace coupling
     /// Closes the HDF5 file and writes the XDMF file that points into it (relative path).
     void close(const std::string &xdmf_path);
 
+    /// Copies the snapshots of another results.h5 taken at times <= `until` [s] (a restart: the
+    /// interrupted run's snapshots up to its checkpoint) as the first ones of this file. Returns
+    /// how many; 0 when the file is missing or unreadable (a hard-killed run's may be).
+    std::size_t copy_snapshots(const std::string &h5_path, double until);
     /// Number of snapshots so far.
     std::size_t n_snapshots() const;
 

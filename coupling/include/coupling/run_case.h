@@ -25,7 +25,19 @@ namespace coupling
     using std::runtime_error::runtime_error;
   };
 
-  /// Runs one case to its stop criterion, reporting to `observer`. Throws InputError for
-  /// inconsistent parameters and InstabilityError when the run goes unstable.
-  Summary run_case(const CaseParameters &parameters, RunObserver &observer);
+  /// A run that stopped on request (signal, or Output/Stop after steps) after writing a final
+  /// checkpoint through RunObserver::checkpoint; the state given there continues it.
+  class RunInterrupted : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// Runs one case to its stop criterion, reporting to `observer`. With `resume` (a state from
+  /// RunObserver::checkpoint of a run with the same parameters), continues that run: the history
+  /// rows it had are reported again first, then the run goes on as if never stopped. Throws
+  /// InputError for inconsistent parameters or a state of another case, InstabilityError when the
+  /// run goes unstable, RunInterrupted when it stopped on request.
+  Summary run_case(const CaseParameters &parameters, RunObserver &observer,
+                   const StateArrays *resume = nullptr);
 } // namespace coupling

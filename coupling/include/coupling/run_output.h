@@ -4,6 +4,7 @@
 /// memory). Plain data only: no deal.II, no file formats here.
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,10 @@ namespace coupling
     std::string stop_reason;          ///< "post-peak drop", "end strain", ...
   };
 
+  /// The full state of a running case as named flat arrays of doubles (a checkpoint): with it, a
+  /// case built from the same parameters continues bitwise (same thread count).
+  using StateArrays = std::map<std::string, std::vector<double>>;
+
   /// Receives what a run produces, in order: any number of progress / history / snapshot calls.
   class RunObserver
   {
@@ -86,5 +91,14 @@ namespace coupling
     virtual void history(const HistoryRow &row) {}
     virtual void snapshot(double time, const ParticleSnapshot &particles,
                           const std::vector<MeshSnapshot> &meshes) {}
+    /// Polled once per step: true asks the run to stop after this step, with a final checkpoint
+    /// (the app answers true after SIGINT / SIGTERM).
+    virtual bool stop_requested() { return false; }
+    /// A checkpoint is due (Output/Checkpoint interval / minutes, or the run was asked to stop):
+    /// `state` continues the run from after step `step` when given back to run_case.
+    virtual void checkpoint(std::size_t step, const StateArrays &state) {}
+    /// The run went unstable: called once, just before run_case throws InstabilityError, with
+    /// the last state that passed every stability check (after step `step`, at time [s]).
+    virtual void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) {}
   };
 } // namespace coupling

@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -124,6 +125,15 @@ namespace fem
     std::vector<double> internal_force(const std::vector<double> &displacement) const;
     /// Overwrite the state (snapshot vertex order): for initial conditions and tests.
     void set_state(const std::vector<double> &displacement, const std::vector<double> &velocity);
+
+    // ---- checkpoints ------------------------------------------------------------------------
+    /// Adds everything that changes during a run (u, v, K u, K v, pending forces, the last
+    /// increment, time, rigid velocity, reaction, work, dissipation, strain energy) to `out` as
+    /// flat arrays named `prefix` + name. load_state on a platen built with the same geometry and
+    /// parameters continues bitwise.
+    void save_state(std::map<std::string, std::vector<double>> &out, const std::string &prefix) const;
+    /// Restores what save_state wrote; std::invalid_argument on a missing or mis-sized array.
+    void load_state(const std::map<std::string, std::vector<double>> &in, const std::string &prefix);
 
   private:
     class Impl;

@@ -20,6 +20,8 @@
 #include <sph/types.h>
 
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace sph
@@ -38,6 +40,10 @@ namespace sph
     /// external - (kinetic + internal + dissipated): zero for an exact integrator
     double balance_error() const { return external - kinetic - internal - dissipated(); }
   };
+
+  /// The part of a body's state that changes during a run, as named flat arrays of doubles
+  /// (checkpoints; see body_state.cc for the names and layouts).
+  using StateArrays = std::map<std::string, std::vector<double>>;
 
   /// An SPH rock body (dim = 2: plane strain, per unit thickness; dim = 3).
   template <int dim>
@@ -157,6 +163,14 @@ namespace sph
     const Parameters &parameters() const { return prm_; }
     /// The rock parameters in use.
     const rock::RockParameters &rock_parameters() const { return rock_; }
+
+    /// Adds every field that changes during a run to `out`, names prefixed by `prefix`: with
+    /// load_state on a body built from the same parameters and particles, the run continues
+    /// bitwise as if never interrupted (same thread count). Defined in body_state.cc.
+    void save_state(StateArrays &out, const std::string &prefix) const;
+    /// Restores what save_state wrote. Throws std::invalid_argument naming a missing array or one
+    /// of the wrong size (a checkpoint of another case).
+    void load_state(const StateArrays &in, const std::string &prefix);
 
   private:
     bool total_lagrangian() const;

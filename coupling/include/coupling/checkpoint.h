@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// checkpoint.h5: the full state of a running case (StateArrays) in HDF5, one 1-D double dataset
+/// per array at the root, named as the array (e.g. "body.x", "driver.history"), plus the root
+/// attribute `cosim_checkpoint_version`. Doubles are stored bit for bit, so a restart from the
+/// file continues exactly as from the state in memory.
+
+#include <coupling/run_output.h>
+
+#include <string>
+
+namespace coupling
+{
+  /// Version written into every checkpoint; read_checkpoint refuses others.
+  constexpr int checkpoint_version = 1;
+
+  /// Writes `state` to `path` atomically (a temporary file renamed over `path`, so that a crash
+  /// while writing leaves the previous checkpoint intact). std::runtime_error on I/O errors.
+  void write_checkpoint(const std::string &path, const StateArrays &state);
+
+  /// Reads a checkpoint. InputError (one line naming the file) when it is missing, unreadable,
+  /// not a cosim checkpoint or of another version.
+  StateArrays read_checkpoint(const std::string &path);
+} // namespace coupling
