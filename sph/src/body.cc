@@ -134,7 +134,6 @@ namespace sph
     build_pairs();
     compute_correction();
     compute_area_vectors();
-    area_factor_ = calibrate_area_factor();
     // F at the reference configuration: identity by construction of L
     F_prev_.assign(n, Tensor<dim>::Identity());
   }
@@ -210,59 +209,15 @@ namespace sph
   template <int dim>
   void Body<dim>::compute_area_vectors()
   {
+    // a_i = -s_i, s_i = sum_j V_i V_j (L_i + L_j) grad_i W_ij (plain gradients: L = I): the
+    // force f_i = P s_i the particle feels in a uniform stress P, so a pressure p applied as
+    // -p a_i balances the uniform state -p I exactly at every particle (no calibration); the
+    // vectors vanish inside, sum to zero over a closed body and, over a flat face, to its area.
     const std::size_t n = p_.size();
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long i = 0; i < static_cast<long>(n); ++i)
-      {
-        Vector<dim> s = Vector<dim>::Zero();
-        for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
-          {
-            const std::int32_t p = pairs_.incidence[k];
-            const std::int32_t j = pairs_.other(p, i);
-            if (pairs_.first[p] == i)
-              s += p_.volume[j] * grad_w_[p];
-            else
-              s -= p_.volume[j] * grad_w_[p];
-          }
-        area0_[i] = -p_.volume[i] * s;
-      }
-  }
-
-  template <int dim>
-  double Body<dim>::calibrate_area_factor() const
-  {
-    // A flat face z = 0 of a lattice of unit spacing: the sum of the area vectors of one column
-    // must be the column's face area 1.
-    const double h = prm_.cslh;
-    const int    m = static_cast<int>(std::ceil(2.0 * h)) + 1, depth = 2 * m + 2;
-    std::vector<Vector<dim>> x;
-    if constexpr (dim == 3)
-      {
-        for (int l = 0; l < depth; ++l)
-          for (int a = -m; a <= m; ++a)
-            for (int b = -m; b <= m; ++b)
-              x.emplace_back(a, b, -(l + 0.5));
-      }
-    else
-      {
-        for (int l = 0; l < depth; ++l)
-          for (int a = -m; a <= m; ++a)
-            x.emplace_back(a, -(l + 0.5));
-      }
-    double sum = 0;
-    for (const auto &xi : x)
-      {
-        bool central = true;
-        for (int d = 0; d < dim - 1; ++d)
-          central = central && std::abs(xi[d]) < 0.5;
-        if (!central || xi[dim - 1] < -(m + 1.5))
-          continue;
-        Vector<dim> s = Vector<dim>::Zero();
-        for (const auto &xj : x)
-          s += kernels::grad_w<dim>(prm_.kernel, xi - xj, h);
-        sum += -s[dim - 1];
-      }
-    return sum > 0 ? 1.0 / sum : 1.0;
+      area0_[i] = -loaded_face_s(static_cast<unsigned int>(i));
+    lump_loaded_faces(area0_);
   }
 
   template <int dim>
@@ -434,7 +389,7 @@ namespace sph
   {
     const std::size_t n  = p_.size();
     const bool        tl = total_lagrangian();
-    const double      pa = pressure_ * area_factor_;
+    const double      pa = pressure_;
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long i = 0; i < static_cast<long>(n); ++i)
       {

@@ -72,6 +72,7 @@ namespace sph
         face_area_[column.members.front()] = area;
         face_columns_.push_back(std::move(column));
       }
+    compute_area_vectors(); // the surface-pressure vectors of the face, lumped like the force
     return count;
   }
 
@@ -93,6 +94,23 @@ namespace sph
         sum += V[i] * V[j] * ((cor ? p_.L[i] : I) + (cor ? p_.L[j] : I)) * g;
       }
     return sum;
+  }
+
+  template <int dim>
+  void Body<dim>::lump_loaded_faces(std::vector<Vector<dim>> &v) const
+  {
+    for (const FaceColumn &column : face_columns_)
+      {
+        const Vector<dim> &n     = column.normal;
+        const unsigned int o     = column.members.front();
+        for (std::size_t m = 1; m < column.members.size(); ++m)
+          {
+            const unsigned int k      = column.members[m];
+            const Vector<dim>  normal = n.dot(v[k]) * n;
+            v[k] -= normal;
+            v[o] += normal;
+          }
+      }
   }
 
   template <int dim>
@@ -123,6 +141,8 @@ namespace sph
   template unsigned int Body<2>::add_loaded_face(const Vector<2> &);
   template unsigned int Body<3>::add_loaded_face(const Vector<3> &);
   template void         Body<2>::loaded_face_forces();
+  template void Body<2>::lump_loaded_faces(std::vector<Vector<2>> &) const;
+  template void Body<3>::lump_loaded_faces(std::vector<Vector<3>> &) const;
   template Vector<2>    Body<2>::loaded_face_s(unsigned int) const;
   template Vector<3>    Body<3>::loaded_face_s(unsigned int) const;
   template void         Body<3>::loaded_face_forces();

@@ -112,11 +112,12 @@ namespace sph
     const Vector<dim> &reaction_force(unsigned int i) const { return reaction_[i]; }
 
     /// Pressure p [Pa], compression +, on the free surface from the next `compute_forces` on.
-    /// Surface: the area vector of particle i is a_i = -kappa V_i sum_j V_j grad W_ij (outward;
-    /// zero inside a full support, so interior particles feel nothing; the sum over a closed body
-    /// vanishes); kappa is calibrated once on a flat lattice face so that sum a_i equals the face
-    /// area. Total Lagrangian: a_i is computed in the reference configuration and pushed forward
-    /// with Nanson's formula J F^{-T}.
+    /// Surface: the area vector of particle i is a_i = -s_i, s_i = sum_j V_i V_j (L_i + L_j)
+    /// grad W_ij, the force a uniform stress P exerts on i being P s_i (outward; zero inside a
+    /// full support; the sum over a closed body vanishes), so the uniform state -p I is in
+    /// equilibrium with the pressure at every particle; on loaded faces (add_loaded_face) the
+    /// normal parts are lumped like the force. Total Lagrangian: a_i is computed in the
+    /// reference configuration and pushed forward with Nanson's formula J F^{-T}.
     void set_surface_pressure(double p) { pressure_ = p; }
     /// Current surface pressure [Pa], compression +.
     double surface_pressure() const { return pressure_; }
@@ -178,7 +179,8 @@ namespace sph
     void build_pairs();            // pairs_, grad_w_ at the current positions
     void compute_correction();     // L from grad_w_
     void compute_area_vectors();   // area0_ from grad_w_
-    double calibrate_area_factor() const;
+    // moves the normal parts of v in each loaded-face column onto its outer particle
+    void lump_loaded_faces(std::vector<Vector<dim>> &v) const;
     void update_stress_total_lagrangian();
     void update_stress_updated_lagrangian();
     void pair_forces();
@@ -213,7 +215,6 @@ namespace sph
     std::vector<FaceColumn> face_columns_;
     std::vector<double>     face_area_; // per particle: its column's loaded area (outer only)
     double pressure_      = 0;
-    double area_factor_   = 1;
     double wave_speed_    = 0;
     double dt_last_       = 0;
     double viscous_       = 0;
