@@ -166,11 +166,22 @@ namespace sph
     pair_power_.resize(n_p);
     pair_hg_power_.resize(n_p);
     const KernelType kernel = prm_.kernel;
+    // total Lagrangian: pairs are built once, in the reference configuration, so the hourglass
+    // factor hg V0_i V0_j W(|X_ij|) / |X_ij|^2 is a constant of the pair (cached pair geometry)
+    const bool   tl = total_lagrangian();
+    const double hg = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
+    hg_factor_.resize(tl ? n_p : 0);
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long p = 0; p < static_cast<long>(n_p); ++p)
       {
         const int i = pairs_.first[p], j = pairs_.second[p];
         grad_w_[p]  = kernels::grad_w<dim>(kernel, p_.x[i] - p_.x[j], 0.5 * (p_.h[i] + p_.h[j]));
+        if (tl)
+          {
+            const double X2 = (p_.x0[j] - p_.x0[i]).squaredNorm();
+            const double W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
+            hg_factor_[p] = X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
+          }
       }
   }
 
@@ -380,7 +391,6 @@ namespace sph
     const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
     const bool        av    = alpha > 0 || beta > 0;
     const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
-    const KernelType  kernel = prm_.kernel;
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long p = 0; p < static_cast<long>(n_p); ++p)
       {
@@ -416,9 +426,8 @@ namespace sph
             const double      r   = std::sqrt(r2);
             const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
             const double      delta = err.dot(x) / r;
-            const double      X2    = X.squaredNorm();
-            const double      W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
-            const double      g  = hg * V[i] * V[j] * W0 * delta / X2;
+            // hg V_i V_j W(|X|) delta / |X|^2, the constant factor cached by build_pairs
+            const double      g = hg_factor_[p] * delta;
             const Vector<dim> fh = (-g / r) * x; // on i; +g x/r on j
             f += fh;
             hg_power = fh.dot(vij);

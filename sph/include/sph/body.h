@@ -159,6 +159,7 @@ namespace sph
     std::vector<Vector<dim>> pair_force_; // per pair: force on first, -force on second
     std::vector<double>      pair_power_; // per pair: AV dissipation power [W]
     std::vector<double>      pair_hg_power_; // per pair: hourglass power [W]
+    std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
     std::vector<Tensor<dim>> Q_;          // per particle: V0 P L (TL) or V sigma L (UL)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
     std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)
