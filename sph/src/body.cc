@@ -417,9 +417,10 @@ namespace sph
                   const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
                   const double rho = 0.5 * (p_.density[i] + p_.density[j]);
                   const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
-                  // grad W along the current pair direction, magnitude of the cached gradient
+                  // grad W along the current pair direction, magnitude of the cached gradient:
+                  // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
                   const Vector<dim> fv =
-                    (p_.mass[i] * p_.mass[j] * Pi * gw.norm() / std::sqrt(r2)) * xij;
+                    (p_.mass[i] * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2)) * xij;
                   f += fv;
                   power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
                 }
@@ -427,14 +428,14 @@ namespace sph
           if (hg > 0 && r2 > 0)
             {
               // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
+              // delta = err . x / r is the separation error along the pair; the force magnitude
+              // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
+              // acts along x / r: g / r = factor * (err . x) / r^2, no square root needed
               const Vector<dim> X   = p_.x0[j] - p_.x0[i];
               const Vector<dim> x   = -xij;
-              const double      r   = std::sqrt(r2);
               const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
-              const double      delta = err.dot(x) / r;
-              // hg V_i V_j W(|X|) delta / |X|^2, the constant factor cached by build_pairs
-              const double      g = hg_factor_[p] * delta;
-              const Vector<dim> fh = (-g / r) * x; // on i; +g x/r on j
+              const double      g_over_r = hg_factor_[p] * err.dot(x) / r2;
+              const Vector<dim> fh = -g_over_r * x; // on i; +g x/r on j
               f += fh;
               hg_power = fh.dot(vij);
             }
