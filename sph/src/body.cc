@@ -63,14 +63,28 @@ namespace sph
                                      const std::vector<double> &volume,
                                      const std::vector<Vector<dim>> &f, const long i)
     {
-      Tensor<dim> A = Tensor<dim>::Zero();
+      // accumulated in plain scalars (the same products and sums as the Eigen expression
+      // A += (s (f_j - f_i)) grad^T, which Eigen keeps in memory): the compiler holds A in registers
+      double             a[dim][dim] = {};
+      const Vector<dim> &fi          = f[i];
       for (std::int32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k)
         {
           const std::int32_t p = pairs.incidence[k];
           const std::int32_t j = pairs.other(p, i);
           const double       s = (pairs.first[p] == i) ? volume[j] : -volume[j];
-          A.noalias() += (s * (f[j] - f[i])) * grad_w[p].transpose();
+          const Vector<dim> &fj = f[j];
+          const Vector<dim> &g  = grad_w[p];
+          double             d[dim];
+          for (int r = 0; r < dim; ++r)
+            d[r] = s * (fj[r] - fi[r]);
+          for (int r = 0; r < dim; ++r)
+            for (int c = 0; c < dim; ++c)
+              a[r][c] += d[r] * g[c];
         }
+      Tensor<dim> A;
+      for (int r = 0; r < dim; ++r)
+        for (int c = 0; c < dim; ++c)
+          A(r, c) = a[r][c];
       return A;
     }
   } // namespace
