@@ -35,8 +35,7 @@ namespace
                      static_cast<long>(malloc_usable_size(p));
     long peak = peak_bytes.load();
     while (now > peak && !peak_bytes.compare_exchange_weak(peak, now))
-      {
-      }
+    {}
     return p;
   }
 
@@ -64,12 +63,30 @@ namespace
   }
 } // namespace
 
-void *operator new(std::size_t size) { return counted_alloc(size); }
-void *operator new[](std::size_t size) { return counted_alloc(size); }
-void  operator delete(void *p) noexcept { counted_free(p); }
-void  operator delete[](void *p) noexcept { counted_free(p); }
-void  operator delete(void *p, std::size_t) noexcept { counted_free(p); }
-void  operator delete[](void *p, std::size_t) noexcept { counted_free(p); }
+void *operator new(std::size_t size)
+{
+  return counted_alloc(size);
+}
+void *operator new[](std::size_t size)
+{
+  return counted_alloc(size);
+}
+void operator delete(void *p) noexcept
+{
+  counted_free(p);
+}
+void operator delete[](void *p) noexcept
+{
+  counted_free(p);
+}
+void operator delete(void *p, std::size_t) noexcept
+{
+  counted_free(p);
+}
+void operator delete[](void *p, std::size_t) noexcept
+{
+  counted_free(p);
+}
 
 namespace
 {
@@ -79,22 +96,22 @@ namespace
   template <int dim>
   void bm_grad_w(benchmark::State &state)
   {
-    const KernelType         type = state.range(0) == 0 ? KernelType::cubic_spline :
-                                                          KernelType::wendland_c2;
-    const double             h    = 1.2e-3;
-    std::mt19937             gen(7);
+    const KernelType type =
+      state.range(0) == 0 ? KernelType::cubic_spline : KernelType::wendland_c2;
+    const double h = 1.2e-3;
+    std::mt19937 gen(7);
     std::uniform_real_distribution<double> u(-2.0 * h, 2.0 * h);
     std::vector<Vector<dim>> x(4096);
     for (auto &xi : x)
       for (int d = 0; d < dim; ++d)
         xi[d] = u(gen);
     for (auto _ : state)
-      {
-        Vector<dim> s = Vector<dim>::Zero();
-        for (const auto &xi : x)
-          s += kernels::grad_w<dim>(type, xi, h);
-        benchmark::DoNotOptimize(s);
-      }
+    {
+      Vector<dim> s = Vector<dim>::Zero();
+      for (const auto &xi : x)
+        s += kernels::grad_w<dim>(type, xi, h);
+      benchmark::DoNotOptimize(s);
+    }
     state.SetItemsProcessed(state.iterations() * static_cast<long>(x.size()));
     state.SetLabel(type == KernelType::cubic_spline ? "cubic spline" : "Wendland C2");
   }
@@ -112,13 +129,13 @@ namespace
   void bm_find_pairs(benchmark::State &state)
   {
     const Lattice<dim> lat = specimen<dim>(static_cast<double>(state.range(0)));
-    PairList           pairs;
+    PairList pairs;
     for (auto _ : state)
       find_pairs<dim>(lat.positions, 2.4 * lat.spacing, pairs);
     state.counters["particles"] = lat.positions.size();
     state.counters["pairs"]     = pairs.n_pairs();
-    state.counters["pairs/s"] =
-      benchmark::Counter(static_cast<double>(pairs.n_pairs()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["pairs/s"]   = benchmark::Counter(static_cast<double>(pairs.n_pairs()),
+                                                     benchmark::Counter::kIsIterationInvariantRate);
   }
 
   /// The configuration of the issue-8 target: FORM 8 (TL + correction), Mohr-Coulomb with
@@ -134,13 +151,13 @@ namespace
     mat.softening_strain = 2e-3;
     Body<dim> body(prm, mat, lat.positions, lat.volumes);
     for (unsigned i = 0; i < body.n_particles(); ++i)
-      {
-        const double z = lat.positions[i][dim - 1];
-        if (z < lat.spacing)
-          body.constrain(i, dim - 1, 0.0);
-        else if (z > 0.1 - lat.spacing)
-          body.constrain(i, dim - 1, -0.5);
-      }
+    {
+      const double z = lat.positions[i][dim - 1];
+      if (z < lat.spacing)
+        body.constrain(i, dim - 1, 0.0);
+      else if (z > 0.1 - lat.spacing)
+        body.constrain(i, dim - 1, -0.5);
+    }
     return body;
   }
 
@@ -149,30 +166,29 @@ namespace
   template <int dim>
   void bm_step(benchmark::State &state)
   {
-    const long   baseline = reset_peak();
-    const auto   lat      = specimen<dim>(static_cast<double>(state.range(0)));
-    Body<dim>    body     = loaded_body<dim>(lat, static_cast<int>(state.range(1)));
-    const double n        = body.n_particles();
-    double       cpu      = 0;
+    const long baseline = reset_peak();
+    const auto lat      = specimen<dim>(static_cast<double>(state.range(0)));
+    Body<dim> body      = loaded_body<dim>(lat, static_cast<int>(state.range(1)));
+    const double n      = body.n_particles();
+    double cpu          = 0;
     for (auto _ : state)
-      {
-        const double c0 = cpu_seconds();
-        body.compute_forces();
-        body.integrate(body.stable_time_step());
-        cpu += cpu_seconds() - c0;
-      }
+    {
+      const double c0 = cpu_seconds();
+      body.compute_forces();
+      body.integrate(body.stable_time_step());
+      cpu += cpu_seconds() - c0;
+    }
     const double steps          = static_cast<double>(state.iterations());
     state.counters["particles"] = n;
     state.counters["pairs"]     = static_cast<double>(body.n_pairs());
     state.counters["threads"]   = static_cast<double>(state.range(1));
     state.counters["particle_steps/s"] =
       benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
-    state.counters["pair_interactions/s"] =
-      benchmark::Counter(static_cast<double>(body.n_pairs()), benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["pair_interactions/s"] = benchmark::Counter(
+      static_cast<double>(body.n_pairs()), benchmark::Counter::kIsIterationInvariantRate);
     // per CPU second of all threads: robust on a shared machine, and per core by construction
     state.counters["particle_steps/cpu_s"] = n * steps / cpu;
-    state.counters["bytes/particle"] =
-      static_cast<double>(peak_bytes.load() - baseline) / n;
+    state.counters["bytes/particle"]       = static_cast<double>(peak_bytes.load() - baseline) / n;
   }
 } // namespace
 

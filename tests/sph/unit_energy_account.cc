@@ -17,9 +17,9 @@ namespace
   /// forces: everything it dissipates comes out of the initial kinetic energy.
   Energies run(const int threads, double &kinetic0)
   {
-    const double     dx  = 1e-3;
+    const double dx      = 1e-3;
     const Lattice<3> lat = make_block<3>(Vector<3>(0, 0, 0), Vector<3>(0.01, 0.01, 0.01), dx);
-    Parameters       prm;
+    Parameters prm;
     prm.spacing   = dx;
     prm.av_alpha  = 1.0;
     prm.av_beta   = 1.0;
@@ -29,24 +29,24 @@ namespace
     m.model = RockModel::elastic;
     Body<3> body(prm, m, lat.positions, lat.volumes);
     for (unsigned i = 0; i < body.n_particles(); ++i)
-      {
-        const Vector<3> x = lat.positions[i] - Vector<3>(0.005, 0.005, 0.005);
-        body.set_velocity(i, Vector<3>(-2.0 * x[0] / 0.005, std::sin(1.7e3 * x[0]) * 0.5,
-                                       -2.0 * x[2] / 0.005));
-      }
+    {
+      const Vector<3> x = lat.positions[i] - Vector<3>(0.005, 0.005, 0.005);
+      body.set_velocity(
+        i, Vector<3>(-2.0 * x[0] / 0.005, std::sin(1.7e3 * x[0]) * 0.5, -2.0 * x[2] / 0.005));
+    }
     kinetic0 = body.energies().kinetic;
     for (int s = 0; s < 60; ++s)
-      {
-        body.compute_forces();
-        body.integrate(body.stable_time_step());
-      }
+    {
+      body.compute_forces();
+      body.integrate(body.stable_time_step());
+    }
     return body.energies();
   }
 
   TEST(SphEnergyAccount, ViscousAndHourglassWorkCloseTheBalance)
   {
-    double         k0 = 0;
-    const Energies e  = run(1, k0);
+    double k0        = 0;
+    const Energies e = run(1, k0);
     std::cout << "kinetic0 " << k0 << " kinetic " << e.kinetic << " internal " << e.internal
               << " viscous " << e.viscous << " hourglass " << e.hourglass << " plastic "
               << e.plastic << " balance error " << e.balance_error() << std::endl;
@@ -65,9 +65,9 @@ namespace
 
   TEST(SphEnergyAccount, DissipationIndependentOfThreadCount)
   {
-    double         k0 = 0;
-    const Energies a  = run(1, k0);
-    const Energies b  = run(2, k0);
+    double k0        = 0;
+    const Energies a = run(1, k0);
+    const Energies b = run(2, k0);
     // positions are bitwise equal for any thread count; only the order in which the pair powers
     // are added differs (per-thread chunks): round-off, relative 1e-12 is generous
     EXPECT_NEAR(a.viscous, b.viscous, 1e-12 * std::abs(a.viscous));
