@@ -63,14 +63,28 @@ namespace sph
                                      const std::vector<double> &volume,
                                      const std::vector<Vector<dim>> &f, const long i)
     {
-      Tensor<dim> A = Tensor<dim>::Zero();
+      // accumulated in plain scalars (the same products and sums as the Eigen expression
+      // A += (s (f_j - f_i)) grad^T, which Eigen keeps in memory): the compiler holds A in registers
+      double             a[dim][dim] = {};
+      const Vector<dim> &fi          = f[i];
       for (std::int32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k)
         {
           const std::int32_t p = pairs.incidence[k];
           const std::int32_t j = pairs.other(p, i);
           const double       s = (pairs.first[p] == i) ? volume[j] : -volume[j];
-          A.noalias() += (s * (f[j] - f[i])) * grad_w[p].transpose();
+          const Vector<dim> &fj = f[j];
+          const Vector<dim> &g  = grad_w[p];
+          double             d[dim];
+          for (int r = 0; r < dim; ++r)
+            d[r] = s * (fj[r] - fi[r]);
+          for (int r = 0; r < dim; ++r)
+            for (int c = 0; c < dim; ++c)
+              a[r][c] += d[r] * g[c];
         }
+      Tensor<dim> A;
+      for (int r = 0; r < dim; ++r)
+        for (int c = 0; c < dim; ++c)
+          A(r, c) = a[r][c];
       return A;
     }
   } // namespace
@@ -162,14 +176,23 @@ namespace sph
     const std::size_t n_p = pairs_.n_pairs();
     grad_w_.resize(n_p);
     pair_force_.resize(n_p);
-    pair_power_.resize(n_p);
-    pair_hg_power_.resize(n_p);
     const KernelType kernel = prm_.kernel;
+    // total Lagrangian: pairs are built once, in the reference configuration, so the hourglass
+    // factor hg V0_i V0_j W(|X_ij|) / |X_ij|^2 is a constant of the pair (cached pair geometry)
+    const bool   tl = total_lagrangian();
+    const double hg = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
+    hg_factor_.resize(tl ? n_p : 0);
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long p = 0; p < static_cast<long>(n_p); ++p)
       {
         const int i = pairs_.first[p], j = pairs_.second[p];
         grad_w_[p]  = kernels::grad_w<dim>(kernel, p_.x[i] - p_.x[j], 0.5 * (p_.h[i] + p_.h[j]));
+        if (tl)
+          {
+            const double X2 = (p_.x0[j] - p_.x0[i]).squaredNorm();
+            const double W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
+            hg_factor_[p] = X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
+          }
       }
   }
 
@@ -335,52 +358,69 @@ namespace sph
     const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
     const bool        av    = alpha > 0 || beta > 0;
     const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
-    const KernelType  kernel = prm_.kernel;
-#pragma omp parallel for num_threads(n_threads_) schedule(static)
-    for (long p = 0; p < static_cast<long>(n_p); ++p)
+    // dissipation powers summed per static chunk, chunks added in thread order: deterministic
+    // for a given thread count, and no per-pair power arrays (16 bytes per pair saved)
+    std::vector<double> partial(2 * n_threads_, 0.0);
+#pragma omp parallel num_threads(n_threads_)
+    {
+      const int   t = omp_get_thread_num(), T = omp_get_num_threads();
+      std::size_t b, e;
+      chunk(n_p, t, T, b, e);
+      double sum_power = 0, sum_hg_power = 0;
+      for (long p = static_cast<long>(b); p < static_cast<long>(e); ++p)
+        {
+          const int i = pairs_.first[p], j = pairs_.second[p];
+          const Vector<dim> &gw = grad_w_[p];
+          // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
+          Vector<dim> f = (V[j] * Q_[i] + V[i] * Q_[j]) * gw;
+          double      power = 0, hg_power = 0;
+          const Vector<dim> xij = p_.x[i] - p_.x[j];
+          const Vector<dim> vij = p_.v[i] - p_.v[j];
+          const double      r2  = xij.squaredNorm();
+          if (av)
+            {
+              const double vr = vij.dot(xij);
+              if (vr < 0 && r2 > 0)
+                {
+                  const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
+                  const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
+                  const double rho = 0.5 * (p_.density[i] + p_.density[j]);
+                  const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
+                  // grad W along the current pair direction, magnitude of the cached gradient:
+                  // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
+                  const Vector<dim> fv =
+                    (p_.mass[i] * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2)) * xij;
+                  f += fv;
+                  power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
+                }
+            }
+          if (hg > 0 && r2 > 0)
+            {
+              // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
+              // delta = err . x / r is the separation error along the pair; the force magnitude
+              // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
+              // acts along x / r: g / r = factor * (err . x) / r^2, no square root needed
+              const Vector<dim> X   = p_.x0[j] - p_.x0[i];
+              const Vector<dim> x   = -xij;
+              const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
+              const double      g_over_r = hg_factor_[p] * err.dot(x) / r2;
+              const Vector<dim> fh = -g_over_r * x; // on i; +g x/r on j
+              f += fh;
+              hg_power = fh.dot(vij);
+            }
+          pair_force_[p] = f;
+          sum_power += power;
+          sum_hg_power += hg_power;
+        }
+      partial[2 * t]     = sum_power;
+      partial[2 * t + 1] = sum_hg_power;
+    }
+    viscous_power_   = 0;
+    hourglass_power_ = 0;
+    for (int t = 0; t < n_threads_; ++t)
       {
-        const int i = pairs_.first[p], j = pairs_.second[p];
-        const Vector<dim> &gw = grad_w_[p];
-        // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
-        Vector<dim> f = (V[j] * Q_[i] + V[i] * Q_[j]) * gw;
-        double      power = 0, hg_power = 0;
-        const Vector<dim> xij = p_.x[i] - p_.x[j];
-        const Vector<dim> vij = p_.v[i] - p_.v[j];
-        const double      r2  = xij.squaredNorm();
-        if (av)
-          {
-            const double vr = vij.dot(xij);
-            if (vr < 0 && r2 > 0)
-              {
-                const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
-                const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
-                const double rho = 0.5 * (p_.density[i] + p_.density[j]);
-                const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
-                // grad W along the current pair direction, magnitude of the cached gradient
-                const Vector<dim> fv =
-                  (p_.mass[i] * p_.mass[j] * Pi * gw.norm() / std::sqrt(r2)) * xij;
-                f += fv;
-                power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
-              }
-          }
-        if (hg > 0 && r2 > 0)
-          {
-            // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
-            const Vector<dim> X   = p_.x0[j] - p_.x0[i];
-            const Vector<dim> x   = -xij;
-            const double      r   = std::sqrt(r2);
-            const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
-            const double      delta = err.dot(x) / r;
-            const double      X2    = X.squaredNorm();
-            const double      W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
-            const double      g  = hg * V[i] * V[j] * W0 * delta / X2;
-            const Vector<dim> fh = (-g / r) * x; // on i; +g x/r on j
-            f += fh;
-            hg_power = fh.dot(vij);
-          }
-        pair_force_[p]    = f;
-        pair_power_[p]    = power;
-        pair_hg_power_[p] = hg_power;
+        viscous_power_ += partial[2 * t];
+        hourglass_power_ += partial[2 * t + 1];
       }
   }
 
@@ -450,11 +490,8 @@ namespace sph
       p_.f_ext[i].setZero();
       return work;
     });
-    const std::size_t n_p = pairs_.n_pairs();
-    viscous_ -= dt * deterministic_sum(n_p, n_threads_,
-                                       [&](const std::size_t p) { return pair_power_[p]; });
-    hourglass_ -= dt * deterministic_sum(n_p, n_threads_,
-                                         [&](const std::size_t p) { return pair_hg_power_[p]; });
+    viscous_ -= dt * viscous_power_;
+    hourglass_ -= dt * hourglass_power_;
     dt_last_ = dt;
   }
 

@@ -196,8 +196,7 @@ namespace sph
     PairList               pairs_;
     std::vector<Vector<dim>> grad_w_;     // per pair: grad_i W_ij (reference config in TL)
     std::vector<Vector<dim>> pair_force_; // per pair: force on first, -force on second
-    std::vector<double>      pair_power_; // per pair: AV dissipation power [W]
-    std::vector<double>      pair_hg_power_; // per pair: hourglass power [W]
+    std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
     std::vector<Tensor<dim>> Q_;          // per particle: V0 P L (TL) or V sigma L (UL)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
     std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)
@@ -218,6 +217,8 @@ namespace sph
     double wave_speed_    = 0;
     double dt_last_       = 0;
     double viscous_       = 0;
+    double viscous_power_ = 0;   // AV power of the last pair_forces, sum over pairs (<= 0) [W]
+    double hourglass_power_ = 0; // hourglass power of the last pair_forces [W]
     double hourglass_     = 0;
     double external_      = 0;
     int    n_threads_     = 1;
