@@ -1,6 +1,7 @@
 // `cosim study`: a tiny elastic UCS swept over two rock groups and over two end strains at a
 // coarse spacing (5 mm, about a second a run), checked against Hooke's law and Table 3; its bad
-// input (exit 2, one line, nothing written); the Mohr-Coulomb envelope the CTCS rows are compared with.
+// input (exit 2, one line, nothing written); the Mohr-Coulomb envelope the CTCS rows are compared
+// with.
 #include "subprocess.h"
 
 #include <coupling/calibrate.h>
@@ -21,19 +22,22 @@ namespace
   /// Fixed settings of the tiny case: elastic rock, 5 mm spacing, stop at 0.1 % strain.
   std::vector<std::string> tiny(std::vector<std::string> args)
   {
-    for (const auto *s : {"Rock/Model=elastic", "SPH/Particle spacing=0.005", "Loading/End strain=0.001"})
+    for (const auto *s :
+         {"Rock/Model=elastic", "SPH/Particle spacing=0.005", "Loading/End strain=0.001"})
       args.insert(args.end(), {"--set", s});
     args.push_back("--quiet");
     return args;
   }
 
-  void expect_bad_input(const Sandbox &box, const std::vector<std::string> &args, const std::string &expected)
+  void expect_bad_input(const Sandbox &box, const std::vector<std::string> &args,
+                        const std::string &expected)
   {
     const auto before = listing(box.dir());
-    const Result r = run_cosim(box, args);
+    const Result r    = run_cosim(box, args);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line only:\n" << r.err;
-    EXPECT_NE(r.err.find(expected), std::string::npos) << "message lacks '" << expected << "': " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos)
+      << "message lacks '" << expected << "': " << r.err;
     EXPECT_EQ(listing(box.dir()), before) << "bad input must write nothing";
   }
 } // namespace
@@ -53,7 +57,8 @@ TEST(Study, GroupsOfAnElasticUcsFollowHookeAndTable3)
   {
     EXPECT_EQ(table.text(i, "Rock/Group"), i == 0 ? "M1" : "M4");
     EXPECT_EQ(table.text(i, "status"), "ok");
-    EXPECT_TRUE(fs::exists(out / table.text(i, "folder") / "summary.json")) << table.text(i, "folder");
+    EXPECT_TRUE(fs::exists(out / table.text(i, "folder") / "summary.json"))
+      << table.text(i, "folder");
     // the reference is Table 3's fitted UCS, printed as read
     EXPECT_NEAR(table.number(i, "reference_MPa"), table3_ucs[i], 1e-9);
     // the error column is the peak against it
@@ -73,7 +78,7 @@ TEST(Study, GroupsOfAnElasticUcsFollowHookeAndTable3)
     ++entries;
   EXPECT_EQ(entries, 1u);
   // a second study into the same folder is refused (and changes nothing) without --force
-  const auto before = listing(out);
+  const auto before  = listing(out);
   const Result again = run_cosim(box, tiny({"study", ucs_case, "--groups", "M1", "-o", "groups"}));
   EXPECT_EQ(again.status, 2) << again.err;
   EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
@@ -83,8 +88,8 @@ TEST(Study, GroupsOfAnElasticUcsFollowHookeAndTable3)
 TEST(Study, KeyValuesSweepDoublesTheStressWithTheStrain)
 {
   Sandbox box;
-  const Result r =
-    run_cosim(box, tiny({"study", ucs_case, "--key", "Loading/End strain", "--values", "0.0005,0.001", "-o", "s"}));
+  const Result r = run_cosim(box, tiny({"study", ucs_case, "--key", "Loading/End strain",
+                                        "--values", "0.0005,0.001", "-o", "s"}));
   ASSERT_EQ(r.status, 0) << r.err;
   const auto table = coupling::CsvTable::read((box.dir() / "s" / "study.csv").string());
   ASSERT_EQ(table.n_rows(), 2u);
@@ -101,12 +106,14 @@ TEST(Study, KeyValuesSweepDoublesTheStressWithTheStrain)
 TEST(Study, BadInputWritesNothing)
 {
   Sandbox box;
-  expect_bad_input(box, {"study", ucs_case, "--key", "SPH/Nonsense", "--values", "1,2"}, "Nonsense");
+  expect_bad_input(box, {"study", ucs_case, "--key", "SPH/Nonsense", "--values", "1,2"},
+                   "Nonsense");
   // the second value is out of range: caught before the first one runs
   expect_bad_input(box, {"study", ucs_case, "--key", "SPH/FORM", "--values", "8,5"}, "FORM");
   expect_bad_input(box, {"study", ucs_case, "--values", "1,2"}, "--values without a --key");
   expect_bad_input(box, {"study", ucs_case, "--key", "SPH/CSLH"}, "has no --values");
-  expect_bad_input(box, {"study", ucs_case, "--key", "SPH/CSLH", "--values", "1.2,,1.3"}, "empty value");
+  expect_bad_input(box, {"study", ucs_case, "--key", "SPH/CSLH", "--values", "1.2,,1.3"},
+                   "empty value");
   expect_bad_input(box, {"study", ucs_case}, "nothing to vary");
   expect_bad_input(box, {"study", ucs_case, "--groups", "M1,M99"}, "M99");
   expect_bad_input(box, {"study", "--groups", "M1"}, "no case file");
@@ -118,7 +125,8 @@ TEST(Study, HelpNamesTheOptions)
   Sandbox box;
   const Result r = run_cosim(box, {"study", "--help"});
   EXPECT_EQ(r.status, 0);
-  for (const auto *o : {"usage: cosim study", "--key", "--values", "--vary", "--groups", "study.csv", "study.png"})
+  for (const auto *o :
+       {"usage: cosim study", "--key", "--values", "--vary", "--groups", "study.csv", "study.png"})
     EXPECT_NE(r.out.find(o), std::string::npos) << o;
   EXPECT_NE(run_cosim(box, {"--help"}).out.find("study"), std::string::npos);
 }
@@ -128,7 +136,8 @@ TEST(Study, MohrCoulombAxialStrengthIsTheEnvelope)
   // sigma3 = 0: Eq. 14 (calibrate.cc's own closed form); Table 4 M1 gives Table 3's UCS to the
   // rounding of c and phi (two decimals: 0.1 %)
   const double c = 32.99e6, phi = 63.68;
-  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0), coupling::mohr_coulomb_ucs({c, phi}), 1.0);
+  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0),
+              coupling::mohr_coulomb_ucs({c, phi}), 1.0);
   EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0), 282.18e6, 0.001 * 282.18e6);
   // slope of the envelope: (1 + sin phi)/(1 - sin phi), exact in sigma3 (linear)
   const double s = std::sin(49.78 * M_PI / 180);

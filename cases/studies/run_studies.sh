@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Runs the studies of cases/studies with `cosim study` and copies each study.csv / study.png into
+# cases/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
+# usage: cases/studies/run_studies.sh [NAME ...]   (no NAME: all, in the order below)
+# Environment: COSIM (default build/coupling/cosim), EXTRA (more cosim options, e.g. --set ...).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+cd "$root"
+cosim="${COSIM:-build/coupling/cosim}"
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}" # shared machine: do not spin at barriers
+bts=cases/bts/bts.prm
+ucs=cases/ucs/ucs.prm
+ctcs=cases/ctcs/ctcs.prm
+quick=(--set "Output/Snapshots=2")
+
+study() { # NAME CASE ARGS...
+  local name=$1 case=$2
+  shift 2
+  echo "== $name: cosim study $case $* -o results/studies/$name --force" >&2
+  "$cosim" study "$case" "$@" "${quick[@]}" ${EXTRA:-} -o "results/studies/$name" --force || true
+  mkdir -p "cases/studies/$name"
+  cp "results/studies/$name/study.csv" "cases/studies/$name/"
+  [ -f "results/studies/$name/study.png" ] && cp "results/studies/$name/study.png" "cases/studies/$name/"
+}
+
+run() {
+  case $1 in
+    bts-groups)   study bts-groups $bts --groups all ;;
+    bts-rate)     study bts-rate $bts --key "Loading/Strain rate" --values 0.25,0.5,1,2,5,10,20 ;;
+    bts-spacing)  study bts-spacing $bts --key "SPH/Particle spacing" --values 0.005,0.004,0.003,0.0025,0.002 ;;
+    bts-tssfac)   study bts-tssfac $bts --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
+    bts-form)     study bts-form $bts --key "SPH/FORM" --values 0,1,7,8 ;;
+    bts-cslh)     study bts-cslh $bts --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
+    bts-platens)  study bts-platens $bts --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
+                    --key "Platens/Model" --values rigid,elastic ;;
+    ucs-groups)   study ucs-groups $ucs --groups all ;;
+    ucs-spacing)  study ucs-spacing $ucs --key "SPH/Particle spacing" --values 0.005,0.004,0.003,0.0025 ;;
+    ucs-rate)     study ucs-rate $ucs --key "Loading/Strain rate" --values 0.5,1,2,5,10 ;;
+    ucs-tssfac)   study ucs-tssfac $ucs --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
+    ucs-form)     study ucs-form $ucs --key "SPH/FORM" --values 0,1,7,8 ;;
+    ucs-cslh)     study ucs-cslh $ucs --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
+    ucs-platens)  study ucs-platens $ucs --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
+                    --key "Platens/Model" --values rigid,elastic ;;
+    ctcs)         study ctcs $ctcs --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
+                    --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
+    *) echo "unknown study $1" >&2; return 2 ;;
+  esac
+}
+
+all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh bts-platens
+     ucs-groups ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ucs-platens ctcs)
+for name in "${@:-${all[@]}}"; do
+  run "$name"
+done
