@@ -28,12 +28,11 @@ namespace
   };
 
   const Command commands[] = {
-    {"run", "run one UCS / BTS / CTCS case from a .prm file", &coupling::run_help,
-     &coupling::run_main},
-    {"calibrate", "back-calculate Mohr-Coulomb c, phi from UCS and BTS (Eqs. 14-15)",
-     &coupling::calibrate_help, &coupling::calibrate_main},
-    {"study", "sweep parameters / rock groups over one case: study.csv and study.png",
-     &coupling::study_help, &coupling::study_main},
+    {"run", "run one UCS / BTS / CTCS case from a .prm file", &coupling::run_help, &coupling::run_main},
+    {"calibrate", "back-calculate Mohr-Coulomb c, phi from UCS and BTS (Eqs. 14-15)", &coupling::calibrate_help,
+     &coupling::calibrate_main},
+    {"study", "sweep parameters / rock groups over one case: study.csv and study.png", &coupling::study_help,
+     &coupling::study_main},
   };
 
   std::vector<std::string> command_names()
@@ -97,9 +96,8 @@ int main(int argc, char **argv)
     std::string names;
     for (const auto &n : command_names())
       names += (names.empty() ? "" : ", ") + n;
-    error_line("unknown subcommand '" + args[0] + "'" +
-               coupling::did_you_mean(args[0], command_names()) + "; accepted: " + names +
-               " (cosim --help)");
+    error_line("unknown subcommand '" + args[0] + "'" + coupling::did_you_mean(args[0], command_names()) +
+               "; accepted: " + names + " (cosim --help)");
     return 2;
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());

@@ -22,8 +22,8 @@ namespace coupling
     {
     public:
       RecordingObserver(ResultsFile &results, ProgressDisplay &progress)
-          : results_(results)
-          , progress_(progress)
+        : results_(results)
+        , progress_(progress)
       {}
 
       void progress(std::size_t step, double time, double fraction) override
@@ -31,8 +31,7 @@ namespace coupling
         progress_.update(step, time, fraction);
       }
       void history(const HistoryRow &row) override { rows.push_back(row); }
-      void snapshot(double time, const ParticleSnapshot &particles,
-                    const std::vector<MeshSnapshot> &meshes) override
+      void snapshot(double time, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &meshes) override
       {
         results_.add_snapshot(time, particles, meshes);
       }
@@ -79,24 +78,20 @@ namespace coupling
                            "'); run takes one CASE.prm");
       }
       if (o.case_file.empty())
-        throw InputError("cosim run: no case file; usage: cosim run CASE.prm [-o OUTDIR] [--set "
-                         "\"Section/Key=value\"]");
+        throw InputError("cosim run: no case file; usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\"]");
       return o;
     }
 
   } // namespace
 
-  fs::path check_output_folder(const std::string &output, const std::string &case_stem,
-                               const bool force)
+  fs::path check_output_folder(const std::string &output, const std::string &case_stem, const bool force)
   {
     const fs::path out =
-      fs::absolute(output.empty() ? fs::path("results") / case_stem : fs::path(output))
-        .lexically_normal();
+      fs::absolute(output.empty() ? fs::path("results") / case_stem : fs::path(output)).lexically_normal();
     const fs::path target = out.has_filename() ? out : out.parent_path();
     std::error_code ec;
     if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-      throw InputError("output folder " + target.string() +
-                       " is an existing file; choose another with -o");
+      throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
     if (fs::exists(target, ec) && !force)
       throw InputError("output folder " + target.string() +
                        " already exists; use --force to replace it, or -o to choose another");
@@ -118,9 +113,8 @@ namespace coupling
     fs::path candidate;
     for (int i = 0;; ++i)
     {
-      candidate =
-        target.parent_path() / ("." + target.filename().string() + "." + tag + "-" +
-                                std::to_string(getpid()) + (i ? "-" + std::to_string(i) : ""));
+      candidate = target.parent_path() / ("." + target.filename().string() + "." + tag + "-" +
+                                           std::to_string(getpid()) + (i ? "-" + std::to_string(i) : ""));
       if (!fs::exists(candidate))
         return candidate;
     }
@@ -141,34 +135,26 @@ namespace coupling
 
   std::string run_help()
   {
-    return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] "
-           "[--quiet]\n"
+    return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] [--quiet]\n"
            "\n"
-           "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case "
-           "stem>):\n"
+           "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case stem>):\n"
            "  summary.json         peak stress and force, modulus, Poisson's ratio, energy checks\n"
-           "  history.csv          one row per output step (time_s, displacement_mm, force_kN, "
-           "...)\n"
-           "  results.h5, .xdmf    history, particle and platen-mesh snapshots (open the .xdmf in "
-           "ParaView)\n"
+           "  history.csv          one row per output step (time_s, displacement_mm, force_kN, ...)\n"
+           "  results.h5, .xdmf    history, particle and platen-mesh snapshots (open the .xdmf in ParaView)\n"
            "  curve.png            stress-strain (UCS, CTCS) or stress-displacement (BTS)\n"
            "  used_parameters.prm  every parameter as used, the rock group's values included\n"
            "\n"
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
-           "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set "
-           "\"SPH/Particle spacing=0.002\"\n"
+           "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set \"SPH/Particle spacing=0.002\"\n"
            "  --force              replace an existing OUTDIR (only once the run has succeeded)\n"
            "  -q, --quiet          no progress display\n"
            "\n"
-           "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, "
-           "so a\n"
-           "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps "
-           "what it\n"
+           "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, so a\n"
+           "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
            "has in OUTDIR.failed.\n"
            "\n"
-           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable "
-           "run,\n"
+           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run,\n"
            "1 other failure.\n"
            "\n"
            "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end),\n"
@@ -180,26 +166,25 @@ namespace coupling
   {
     const RunOptions options = parse_options(args);
     const CaseFile case_file = read_case_file(options.case_file, options.overrides);
-    const fs::path target    = check_output_folder(
-         options.output, fs::path(options.case_file).stem().string(), options.force);
+    const fs::path target =
+      check_output_folder(options.output, fs::path(options.case_file).stem().string(), options.force);
     for (const auto &w : case_file.warnings)
       std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
     return run_into_folder(case_file, target, options.force, options.quiet, nullptr);
   }
 
-  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target,
-                      const bool force, const bool quiet, Summary *result)
+  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, const bool force,
+                      const bool quiet, Summary *result)
   {
 
     // Everything checked: from here on we write, but only into the staging folder.
     std::error_code ec;
-    fs::path
-      first_created; // the outermost folder we create for OUTDIR's parent, removed on failure
+    fs::path first_created; // the outermost folder we create for OUTDIR's parent, removed on failure
     for (fs::path p = target.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
       first_created = p;
     fs::create_directories(target.parent_path(), ec);
     const fs::path staging = sibling(target, "tmp");
-    auto clean_up          = [&] {
+    auto clean_up = [&] {
       fs::remove_all(staging, ec);
       if (!first_created.empty())
         fs::remove_all(first_created, ec);
@@ -207,8 +192,8 @@ namespace coupling
     if (!fs::create_directory(staging, ec))
     {
       clean_up();
-      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() +
-                       " (" + ec.message() + "); choose a writable place with -o");
+      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() + " (" +
+                       ec.message() + "); choose a writable place with -o");
     }
     try
     {
@@ -217,7 +202,7 @@ namespace coupling
       ProgressDisplay progress(case_file.parameters.output.progress && !quiet);
       RecordingObserver observer(results, progress);
       const auto start = std::chrono::steady_clock::now();
-      auto write_all   = [&](const Summary *summary) {
+      auto write_all = [&](const Summary *summary) {
         if (summary)
           write_text_file((staging / "summary.json").string(), summary_json(*summary));
         write_history_csv((staging / "history.csv").string(), observer.rows);
@@ -225,9 +210,8 @@ namespace coupling
         results.close((staging / "results.xdmf").string());
         if (!observer.rows.empty())
         {
-          const std::string why =
-            plot_curve((staging / "history.csv").string(), case_file.parameters.test,
-                         (staging / "curve.png").string());
+          const std::string why = plot_curve((staging / "history.csv").string(), case_file.parameters.test,
+                                             (staging / "curve.png").string());
           if (!why.empty())
             std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
         }
@@ -237,16 +221,14 @@ namespace coupling
         Summary summary = run_case(case_file.parameters, observer);
         progress.finish();
         if (summary.wall_seconds <= 0)
-          summary.wall_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         write_all(&summary);
         publish(staging, target);
         if (result)
           *result = summary;
         if (!quiet)
-          std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n",
-                       summary.test.c_str(), summary.peak_stress * 1e-6, summary.n_steps,
-                       summary.wall_seconds, target.c_str());
+          std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
+                       summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
         return 0;
       }
       catch (const InstabilityError &e)
@@ -264,8 +246,7 @@ namespace coupling
             failed = sibling(failed, "new");
         }
         fs::rename(staging, failed);
-        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(),
-                     failed.c_str());
+        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(), failed.c_str());
         return 3;
       }
     }

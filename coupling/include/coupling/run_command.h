@@ -1,8 +1,7 @@
 #pragma once
 /// @file
 /// `cosim run`: read and check a case, run it, write the result folder atomically. The pieces
-/// (output-folder check, staging sibling, publish, run into a folder) are shared with `cosim
-/// study`.
+/// (output-folder check, staging sibling, publish, run into a folder) are shared with `cosim study`.
 
 #include <coupling/case_file.h>
 #include <coupling/run_output.h>
@@ -23,8 +22,7 @@ namespace coupling
   /// The absolute result folder for `output` (default results/<case_stem> when empty), checked
   /// before anything is written: InputError when it is a file, exists without `force`, or its
   /// nearest existing ancestor is not a writable folder.
-  std::filesystem::path check_output_folder(const std::string &output, const std::string &case_stem,
-                                            bool force);
+  std::filesystem::path check_output_folder(const std::string &output, const std::string &case_stem, bool force);
 
   /// A hidden sibling of `target` (".name.TAG-PID[-i]") that does not exist yet.
   std::filesystem::path sibling(const std::filesystem::path &target, const std::string &tag);
@@ -37,6 +35,6 @@ namespace coupling
   /// through a staging sibling. Returns 0 (and the summary in `*result` when not null) or 3 for
   /// an unstable run, whose partial results go to `target`.failed. `quiet`: no progress display
   /// and no closing line.
-  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, bool force,
-                      bool quiet, Summary *result);
+  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, bool force, bool quiet,
+                      Summary *result);
 } // namespace coupling
