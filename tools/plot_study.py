@@ -61,7 +61,11 @@ def main(argv):
         for r in members:
             if r["status"] != "ok":
                 ax.annotate("unstable", (position(r[x_col]), as_float(r["reference_MPa"])), fontsize=7)
-    if not numeric:
+    if numeric:
+        values = [as_float(x) for x in xs]
+        if min(values) > 0 and max(values) / min(values) >= 20:
+            ax.set_xscale("log")  # rates and the like span decades
+    else:
         ax.set_xticks(range(len(categories)))
         ax.set_xticklabels(categories, rotation=30 if len(categories) > 6 else 0)
     ax.set_xlabel(x_col)

@@ -19,15 +19,22 @@ study() { # NAME CASE ARGS...
   echo "== $name: cosim study $case $* -o results/studies/$name --force" >&2
   "$cosim" study "$case" "$@" "${quick[@]}" ${EXTRA:-} -o "results/studies/$name" --force || true
   mkdir -p "cases/studies/$name"
-  cp "results/studies/$name/study.csv" "cases/studies/$name/"
-  [ -f "results/studies/$name/study.png" ] && cp "results/studies/$name/study.png" "cases/studies/$name/"
+  for f in study.csv study.png; do
+    if [ -f "results/studies/$name/$f" ]; then cp "results/studies/$name/$f" "cases/studies/$name/"; fi
+  done
 }
 
 run() {
   case $1 in
     bts-groups)   study bts-groups $bts --groups all ;;
     bts-rate)     study bts-rate $bts --key "Loading/Strain rate" --values 0.25,0.5,1,2,5,10,20 ;;
-    bts-spacing)  study bts-spacing $bts --key "SPH/Particle spacing" --values 0.005,0.004,0.003,0.0025,0.002 ;;
+    # the 25 mm disc allows at most 2.5 mm (10 particles through the thickness): Table 1's 50 mm
+    # discs. 4 and 3 mm do not divide 50 mm and start with the platens inside the lattice (see
+    # README): 50/12 and 50/15 mm stand in for them.
+    bts-spacing)  study bts-spacing $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \
+                    --values 0.005,0.0041667,0.0033333,0.0025,0.002 ;;
+    bts-spacing-paper) study bts-spacing-paper $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \
+                    --values 0.005,0.004,0.003,0.0025,0.002 ;;
     bts-tssfac)   study bts-tssfac $bts --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
     bts-form)     study bts-form $bts --key "SPH/FORM" --values 0,1,7,8 ;;
     bts-cslh)     study bts-cslh $bts --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
