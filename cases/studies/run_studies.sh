@@ -42,13 +42,16 @@ run() {
                     --key "Platens/Model" --values rigid,elastic ;;
     ucs-groups)   study ucs-groups $ucs --groups all ;;
     ucs-spacing)  study ucs-spacing $ucs --key "SPH/Particle spacing" --values 0.005,0.004,0.003,0.0025 ;;
-    ucs-rate)     study ucs-rate $ucs --key "Loading/Strain rate" --values 0.5,1,2,5,10 ;;
+    # 5 mm: a slow rate costs its inverse in steps (the default 2.5 mm derives about 4 /s)
+    ucs-rate)     study ucs-rate $ucs --set "SPH/Particle spacing=0.005" --key "Loading/Strain rate" \
+                    --values 0.5,1,2,5,10,20 ;;
     ucs-tssfac)   study ucs-tssfac $ucs --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
     ucs-form)     study ucs-form $ucs --key "SPH/FORM" --values 0,1,7,8 ;;
     ucs-cslh)     study ucs-cslh $ucs --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
     ucs-platens)  study ucs-platens $ucs --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
                     --key "Platens/Model" --values rigid,elastic ;;
-    ctcs)         study ctcs $ctcs --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
+    # 3.125 mm (16 particles across, 32 along): 18 runs in the time budget of a shared machine
+    ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.003125" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
