@@ -79,6 +79,8 @@ namespace coupling
       {"SPH", "Viscosity alpha", Kind::real, "1.0", "", "Monaghan artificial viscosity, linear [-]"},
       {"SPH", "Viscosity beta", Kind::real, "1.0", "", "Monaghan artificial viscosity, quadratic [-]"},
       {"SPH", "Hourglass coefficient", Kind::real, "0.1", "", "total-Lagrangian hourglass control [-]"},
+      {"SPH", "Loaded face correction", Kind::boolean, "true", "",
+       "UCS/CTCS: move the symmetric force's boundary term onto the layer the platen loads"},
       {"SPH", "Threads", Kind::integer, "0", "", "threads; 0 = all cores"},
 
       {"Platens", "Model", Kind::selection, "rigid", "rigid|elastic", "rigid (prescribed) or elastic steel (FEM)"},
@@ -554,6 +556,7 @@ namespace coupling
     p.sph.tssfac = r.real("SPH/TSSFAC");
     p.sph.kernel = r.get("SPH/Kernel");
     p.sph.evolve_smoothing_length = r.boolean("SPH/Evolve smoothing length");
+    p.sph.loaded_face_correction  = r.boolean("SPH/Loaded face correction");
     p.sph.av_alpha = r.real("SPH/Viscosity alpha");
     p.sph.av_beta = r.real("SPH/Viscosity beta");
     p.sph.hourglass = r.real("SPH/Hourglass coefficient");

@@ -195,7 +195,7 @@ namespace coupling
                                     std::vector<double> &force_on_nodes)
   {
     build_face_grid(s);
-    const double k    = prm_.stiffness;
+    const double k0   = prm_.stiffness;
     const double mu_s = prm_.friction_static, mu_d = prm_.friction_dynamic;
     const long n  = static_cast<long>(pt.n);
     double fn_sum = 0, energy = 0, dissipated = 0;
@@ -206,6 +206,7 @@ namespace coupling
     for (long i = 0; i < n; ++i)
     {
       Hit hit           = find_face(pt.position + 3 * i, s);
+      const double k    = stiffness_factor_.empty() ? k0 : k0 * stiffness_factor_[i];
       FrictionState &fr = friction_[i];
       std::array<double, 3> f{0, 0, 0};
       if (hit.face < 0 || hit.gap >= 0)

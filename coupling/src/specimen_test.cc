@@ -203,6 +203,12 @@ namespace coupling
     {
       throw InputError(e.what());
     }
+    // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
+    if (!bts_ && prm_.sph.loaded_face_correction)
+    {
+      body_->add_loaded_face(sph::Vector<3>(0, 0, 1));
+      body_->add_loaded_face(sph::Vector<3>(0, 0, -1));
+    }
     const std::size_t n = body_->n_particles();
     force_on_particles_.assign(3 * n, 0.0);
     domain_size_ = 3.0 * std::max(prm_.diameter, prm_.length);
@@ -298,6 +304,23 @@ namespace coupling
     cp.radius                                = 0.5 * prm_.sph.spacing;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    // loaded faces: each outer particle is pressed in proportion to the area it carries, so a
+    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas)
+    const auto &area = body_->loaded_face_areas();
+    if (!area.empty())
+    {
+      double sum = 0;
+      int count  = 0;
+      for (const double a : area)
+        if (a > 0)
+          sum += a, ++count;
+      std::vector<double> factor(area.size(), 1.0);
+      for (std::size_t i = 0; i < area.size(); ++i)
+        if (area[i] > 0)
+          factor[i] = area[i] * count / sum;
+      contact_top_->set_stiffness_factors(factor);
+      contact_bottom_->set_stiffness_factors(factor);
+    }
   }
 
   void SpecimenTest::select_gauges()
@@ -371,8 +394,8 @@ namespace coupling
         f_ext[i][d] += force_on_particles_[3 * i + d];
     body_->integrate(dt_);
 
-    // work of the confining pressure over this step, with the half-step velocities
-    if (ctcs_)
+    // work of the boundary loads (confining pressure, loaded-face correction) over this step,
+    // with the half-step velocities
     {
       const auto &fp = body_->pressure_forces();
       double w       = 0;

@@ -458,6 +458,8 @@ namespace sph
         else
           p_.f_pressure[i].setZero();
       }
+    if (!face_columns_.empty())
+      loaded_face_forces();
   }
 
   template <int dim>

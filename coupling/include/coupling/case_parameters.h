@@ -38,6 +38,7 @@ namespace coupling
     double av_beta = 1.0;         ///< Monaghan artificial viscosity, quadratic term [-]
     double hourglass = 0.1;       ///< total-Lagrangian hourglass coefficient [-]
     int n_threads = 0;            ///< 0 = all cores
+    bool loaded_face_correction = true; ///< UCS/CTCS: boundary term lumped on the loaded layer
   };
 
   /// Platens: rigid (prescribed motion) or elastic steel (deal.II FEM).

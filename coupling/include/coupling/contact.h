@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace coupling
@@ -68,6 +69,10 @@ namespace coupling
     std::size_t apply(const ContactParticles &particles, const ContactSurface &surface, double dt,
                       std::vector<double> &force_on_particles, std::vector<double> &force_on_nodes);
 
+    /// Per-particle factors on the penalty stiffness (size n_particles; empty = all 1), e.g. so
+    /// that a rigid platen loads each particle in proportion to the area it carries.
+    void set_stiffness_factors(std::vector<double> factors) { stiffness_factor_ = std::move(factors); }
+
     /// Sum of the normal forces of the last apply() [N] (>= 0).
     double normal_force() const { return normal_force_; }
     /// Penalty energy stored in the last apply() [J].
@@ -90,6 +95,7 @@ namespace coupling
 
     ContactParameters prm_;
     std::vector<FrictionState> friction_;
+    std::vector<double> stiffness_factor_;
     std::vector<Hit> hits_;
     std::vector<std::array<double, 3>> particle_force_;
     // uniform grid of face bounding boxes

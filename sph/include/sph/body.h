@@ -115,6 +115,27 @@ namespace sph
     /// Current surface pressure [Pa], compression +.
     double surface_pressure() const { return pressure_; }
 
+    /// Declares the flat end face with outward normal `n` (reference configuration) a loaded
+    /// face: a platen presses on its outermost particle layer. The symmetric SPH force spreads a
+    /// uniform stress P over the particles near a boundary as P s_i, s_i = sum_j V_i V_j (L_i +
+    /// L_j) grad W_ij; at a flat lattice face the normal parts of s_i in a column of particles are
+    /// about (1.46, -0.41, -0.04) dx^2 from the surface inwards (cubic spline, CSLH 1.2), so a
+    /// contact load on the outer layer alone leaves that layer at ~0.6 of the bulk stress, and it
+    /// yields first. From then on the normal parts of s_k in each column (the particles within
+    /// the support radius of the face) are moved to the column's outer particle o, with o's
+    /// stress: f_k += P_o ds_k, ds_k = -(n.s_k) n (k != o), ds_o = sum_{k != o} (n.s_k) n. The
+    /// corrections of a column sum to zero (momentum is kept exactly) and vanish inside; a
+    /// uniform stress is then in equilibrium with a load on the outer layer alone. They are
+    /// part of `pressure_forces()` and their work is counted as external work. Returns the
+    /// number of particles in the face's columns. Throws std::invalid_argument for |n| = 0.
+    unsigned int add_loaded_face(const Vector<dim> &n);
+    /// The discrete area [m^(dim-1)] a uniform normal stress on a loaded face acts on through
+    /// particle i: -n . sum_k s_k over i's column for the outer particle of a loaded-face column
+    /// (reference configuration), 0 for every other particle. A platen that loads the outer
+    /// particles in proportion to these areas keeps a uniform stress uniform (the columns at the
+    /// face's rim do not have the area of the inner ones).
+    const std::vector<double> &loaded_face_areas() const { return face_area_; }
+
     /// tssfac * min_i h_i / (c + |v_i|) [s], c the P-wave speed sqrt((K + 4G/3)/rho).
     double stable_time_step() const;
     /// Stress update to the current positions and all forces there (call once per step).
@@ -148,6 +169,8 @@ namespace sph
     void update_stress_updated_lagrangian();
     void pair_forces();
     void gather_forces();
+    void loaded_face_forces();     // see add_loaded_face (in body_loaded_face.cc)
+    Vector<dim> loaded_face_s(unsigned int i) const; // s_i of add_loaded_face
 
     Parameters             prm_;
     MaterialParameters     material_;
@@ -167,6 +190,14 @@ namespace sph
     std::vector<Vector<dim>>  reaction_;
     std::vector<double>       stress_work_; // per particle: integrated stress power [J]
     std::vector<double>       volume_next_; // per particle: scratch for the UL volume update
+    /// One column of a loaded face: its outer particle, then the particles below it.
+    struct FaceColumn
+    {
+      Vector<dim>               normal; // outward unit normal of the face (reference)
+      std::vector<unsigned int> members; // members[0] is the outer particle
+    };
+    std::vector<FaceColumn> face_columns_;
+    std::vector<double>     face_area_; // per particle: its column's loaded area (outer only)
     double pressure_      = 0;
     double area_factor_   = 1;
     double wave_speed_    = 0;

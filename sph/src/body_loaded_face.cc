@@ -1,0 +1,118 @@
+// Loaded faces of an SPH body: the boundary term of the symmetric force moved to the outer layer
+// (see Body::add_loaded_face).
+#include <sph/body.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace sph
+{
+  template <int dim>
+  unsigned int Body<dim>::add_loaded_face(const Vector<dim> &normal)
+  {
+    const double length = normal.norm();
+    if (!(length > 0) || !std::isfinite(length))
+      throw std::invalid_argument("sph::Body::add_loaded_face: the normal must be a non-zero "
+                                  "finite vector");
+    const Vector<dim> n = normal / length;
+    double            h_max = 0, top = -std::numeric_limits<double>::max();
+    for (unsigned int i = 0; i < n_particles(); ++i)
+      {
+        h_max = std::max(h_max, p_.h[i]);
+        top   = std::max(top, n.dot(p_.x0[i]));
+      }
+    // the boundary term reaches as deep as the kernel support (2h) below the outer layer
+    const double depth = 2.0 * h_max + 0.01 * prm_.spacing;
+    // columns: particles with the same lateral lattice position, outer particle first
+    std::map<std::array<long, dim>, std::vector<std::pair<double, unsigned int>>> columns;
+    for (unsigned int i = 0; i < n_particles(); ++i)
+      {
+        const double height = n.dot(p_.x0[i]);
+        if (height < top - depth)
+          continue;
+        const Vector<dim>     lateral = p_.x0[i] - height * n;
+        std::array<long, dim> key;
+        for (int d = 0; d < dim; ++d)
+          key[d] = std::lround(lateral[d] / prm_.spacing);
+        columns[key].emplace_back(-height, i);
+      }
+    face_area_.resize(n_particles(), 0.0);
+    unsigned int count = 0;
+    for (auto &entry : columns)
+      {
+        auto &c = entry.second;
+        std::sort(c.begin(), c.end());
+        // a column whose outer particle lies below the face is not loaded by the platen
+        if (-c.front().first < top - 0.5 * prm_.spacing)
+          continue;
+        FaceColumn column;
+        column.normal = n;
+        for (const auto &m : c)
+          column.members.push_back(m.second);
+        count += static_cast<unsigned int>(c.size());
+        double area = 0;
+        for (const unsigned int k : column.members)
+          area -= n.dot(loaded_face_s(k)); // f = P s: s points into the body
+        face_area_[column.members.front()] = area;
+        face_columns_.push_back(std::move(column));
+      }
+    return count;
+  }
+
+  template <int dim>
+  Vector<dim> Body<dim>::loaded_face_s(const unsigned int i) const
+  {
+    // s_i = sum_j V_i V_j (L_i + L_j) grad_i W_ij: f_i = P s_i for a uniform stress P
+    const bool                 cor = corrected();
+    const std::vector<double> &V   = total_lagrangian() ? p_.volume0 : p_.volume;
+    const Tensor<dim>          I   = Tensor<dim>::Identity();
+    Vector<dim>                sum = Vector<dim>::Zero();
+    for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+      {
+        const std::int32_t p = pairs_.incidence[k];
+        const std::int32_t j = pairs_.other(p, i);
+        const Vector<dim>  g = (pairs_.first[p] == static_cast<std::int32_t>(i)) ?
+                                 grad_w_[p] :
+                                 Vector<dim>(-grad_w_[p]);
+        sum += V[i] * V[j] * ((cor ? p_.L[i] : I) + (cor ? p_.L[j] : I)) * g;
+      }
+    return sum;
+  }
+
+  template <int dim>
+  void Body<dim>::loaded_face_forces()
+  {
+    const bool tl = total_lagrangian();
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long c = 0; c < static_cast<long>(face_columns_.size()); ++c)
+      {
+        const FaceColumn &column = face_columns_[c];
+        const int         o      = static_cast<int>(column.members.front());
+        // the stress of the outer particle: first Piola-Kirchhoff (TL) or Cauchy (UL)
+        const Tensor<dim> sigma = p_.stress[o].template topLeftCorner<dim, dim>();
+        const Tensor<dim> P =
+          tl ? Tensor<dim>(p_.F[o].determinant() * sigma * p_.F[o].inverse().transpose()) : sigma;
+        Vector<dim> moved = Vector<dim>::Zero();
+        for (std::size_t m = 1; m < column.members.size(); ++m)
+          {
+            const int         k  = static_cast<int>(column.members[m]);
+            const Vector<dim> ds = -column.normal.dot(loaded_face_s(k)) * column.normal;
+            p_.f_pressure[k] += P * ds;
+            moved -= ds;
+          }
+        p_.f_pressure[o] += P * moved;
+      }
+  }
+
+  template unsigned int Body<2>::add_loaded_face(const Vector<2> &);
+  template unsigned int Body<3>::add_loaded_face(const Vector<3> &);
+  template void         Body<2>::loaded_face_forces();
+  template Vector<2>    Body<2>::loaded_face_s(unsigned int) const;
+  template Vector<3>    Body<3>::loaded_face_s(unsigned int) const;
+  template void         Body<3>::loaded_face_forces();
+} // namespace sph
