@@ -41,6 +41,7 @@ run() {
     bts-platens)  study bts-platens $bts --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
                     --key "Platens/Model" --values rigid,elastic ;;
     ucs-groups)   study ucs-groups $ucs --groups all ;;
+    ucs-loaded-face) study ucs-loaded-face $ucs --key "SPH/Loaded face correction" --values false,true ;;
     ucs-spacing)  study ucs-spacing $ucs --key "SPH/Particle spacing" --values 0.005,0.004,0.003,0.0025 ;;
     # 5 mm: a slow rate costs its inverse in steps (the default 2.5 mm derives about 4 /s)
     ucs-rate)     study ucs-rate $ucs --set "SPH/Particle spacing=0.005" --key "Loading/Strain rate" \
@@ -58,7 +59,7 @@ run() {
 }
 
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh bts-platens
-     ucs-groups ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ucs-platens ctcs)
+     ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ucs-platens ctcs)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
