@@ -2,7 +2,9 @@
 # Runs the studies of cases/studies with `cosim study` and copies each study.csv / study.png into
 # cases/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
 # usage: cases/studies/run_studies.sh [NAME ...]   (no NAME: all, in the order below)
-# Environment: COSIM (default build/coupling/cosim), EXTRA (more cosim options, e.g. --set ...).
+# Environment: COSIM (default build/coupling/cosim), EXTRA (more cosim options, e.g. --set ...),
+# SPACING (a particle spacing [m] for every run of the study), SUFFIX (appended to the study's
+# folder names), e.g. SPACING=0.005 SUFFIX=-5mm.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
@@ -12,9 +14,10 @@ bts=cases/bts/bts.prm
 ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm
 quick=(--set "Output/Snapshots=2")
+if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 
 study() { # NAME CASE ARGS...
-  local name=$1 case=$2
+  local name=$1${SUFFIX:-} case=$2
   shift 2
   echo "== $name: cosim study $case $* -o results/studies/$name --force" >&2
   "$cosim" study "$case" "$@" "${quick[@]}" ${EXTRA:-} -o "results/studies/$name" --force || true
