@@ -54,8 +54,8 @@ run() {
     ucs-cslh)     study ucs-cslh $ucs --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
     ucs-platens)  study ucs-platens $ucs --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
                     --key "Platens/Model" --values rigid,elastic ;;
-    # 3.125 mm (16 particles across, 32 along): 18 runs in the time budget of a shared machine
-    ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.003125" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
+    # 5 mm (10 particles across): 18 runs in the time budget of a shared machine
+    ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.005" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
