@@ -485,7 +485,8 @@ namespace coupling
           const double gauge = p.test == "BTS" ? p.diameter : p.length;
           csv << "," << number(s.peak_stress * 1e-6) << "," << number(run.reference.measured * 1e-6)
               << "," << number(error, "%.3f") << "," << number(run.reference.envelope * 1e-6) << ","
-              << cell(run.reference.description) << "," << (s.youngs_modulus > 0 ? number(s.youngs_modulus * 1e-9) : "") << ","
+              << cell(run.reference.description) << ","
+              << (s.youngs_modulus > 0 ? number(s.youngs_modulus * 1e-9) : "") << ","
               << number(s.platen_modulus * 1e-9) << ","
               << (s.poissons_ratio < 0 ? "" : number(s.poissons_ratio)) << ","
               << number(s.strain_at_peak) << "," << number(s.strain_at_peak * gauge * 1e3) << ","
