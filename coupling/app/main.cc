@@ -9,6 +9,7 @@
 #include <coupling/cli.h>
 #include <coupling/run_case.h>
 #include <coupling/run_command.h>
+#include <coupling/study.h>
 
 #include <cstdio>
 #include <exception>
@@ -30,6 +31,8 @@ namespace
     {"run", "run one UCS / BTS / CTCS case from a .prm file", &coupling::run_help, &coupling::run_main},
     {"calibrate", "back-calculate Mohr-Coulomb c, phi from UCS and BTS (Eqs. 14-15)", &coupling::calibrate_help,
      &coupling::calibrate_main},
+    {"study", "sweep parameters / rock groups over one case: study.csv and study.png", &coupling::study_help,
+     &coupling::study_main},
   };
 
   std::vector<std::string> command_names()

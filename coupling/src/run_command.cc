@@ -175,61 +175,60 @@ namespace coupling
       return o;
     }
 
-    /// Where the results go, checked before anything is run or written.
-    fs::path check_output_folder(const RunOptions &o, const std::string &case_stem)
-    {
-      const fs::path out = fs::absolute(o.output.empty() ? fs::path("results") / case_stem : fs::path(o.output))
-                             .lexically_normal();
-      const fs::path target = out.has_filename() ? out : out.parent_path();
-      std::error_code ec;
-      if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-        throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
-      const bool own_restart =
-        !o.restart.empty() && fs::equivalent(target, fs::path(o.restart), ec);
-      if (fs::exists(target, ec) && !o.force && !own_restart)
-        throw InputError("output folder " + target.string() +
-                         " already exists; use --force to replace it, or -o to choose another");
-      // the nearest existing ancestor must be a writable folder
-      fs::path ancestor = target.parent_path();
-      while (!ancestor.empty() && !fs::exists(ancestor, ec) && ancestor != ancestor.root_path())
-        ancestor = ancestor.parent_path();
-      if (!fs::is_directory(ancestor, ec))
-        throw InputError("output folder " + target.string() + ": " + ancestor.string() +
-                         " is not a folder; choose a writable place with -o");
-      if (access(ancestor.c_str(), W_OK | X_OK) != 0)
-        throw InputError("output folder " + target.string() + ": " + ancestor.string() +
-                         " is not writable; choose a writable place with -o");
-      return target;
-    }
-
-    /// A sibling of `target` that does not exist yet.
-    fs::path sibling(const fs::path &target, const std::string &tag)
-    {
-      fs::path candidate;
-      for (int i = 0;; ++i)
-      {
-        candidate = target.parent_path() /
-                    ("." + target.filename().string() + "." + tag + "-" + std::to_string(getpid()) +
-                     (i ? "-" + std::to_string(i) : ""));
-        if (!fs::exists(candidate))
-          return candidate;
-      }
-    }
-
-    /// Replaces `target` by `staging` (rename; the old folder is removed only after).
-    void publish(const fs::path &staging, const fs::path &target)
-    {
-      if (fs::exists(target))
-      {
-        const fs::path old = sibling(target, "old");
-        fs::rename(target, old);
-        fs::rename(staging, target);
-        fs::remove_all(old);
-      }
-      else
-        fs::rename(staging, target);
-    }
   } // namespace
+
+  fs::path check_output_folder(const std::string &output, const std::string &case_stem, const bool force,
+                               const std::string &restart)
+  {
+    const fs::path out = fs::absolute(output.empty() ? fs::path("results") / case_stem : fs::path(output))
+                           .lexically_normal();
+    const fs::path target = out.has_filename() ? out : out.parent_path();
+    std::error_code ec;
+    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
+      throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
+    const bool own_restart =
+      !restart.empty() && fs::equivalent(target, fs::path(restart), ec);
+    if (fs::exists(target, ec) && !force && !own_restart)
+      throw InputError("output folder " + target.string() +
+                       " already exists; use --force to replace it, or -o to choose another");
+    // the nearest existing ancestor must be a writable folder
+    fs::path ancestor = target.parent_path();
+    while (!ancestor.empty() && !fs::exists(ancestor, ec) && ancestor != ancestor.root_path())
+      ancestor = ancestor.parent_path();
+    if (!fs::is_directory(ancestor, ec))
+      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                       " is not a folder; choose a writable place with -o");
+    if (access(ancestor.c_str(), W_OK | X_OK) != 0)
+      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                       " is not writable; choose a writable place with -o");
+    return target;
+  }
+
+  fs::path sibling(const fs::path &target, const std::string &tag)
+  {
+    fs::path candidate;
+    for (int i = 0;; ++i)
+    {
+      candidate = target.parent_path() /
+                  ("." + target.filename().string() + "." + tag + "-" + std::to_string(getpid()) +
+                   (i ? "-" + std::to_string(i) : ""));
+      if (!fs::exists(candidate))
+        return candidate;
+    }
+  }
+
+  void publish(const fs::path &staging, const fs::path &target)
+  {
+    if (fs::exists(target))
+    {
+      const fs::path old = sibling(target, "old");
+      fs::rename(target, old);
+      fs::rename(staging, target);
+      fs::remove_all(old);
+    }
+    else
+      fs::rename(staging, target);
+  }
 
   std::string run_help()
   {
@@ -273,12 +272,19 @@ namespace coupling
     const CaseFile case_file = read_case_file(options.case_file, options.overrides);
     if (!options.restart.empty() && options.output.empty())
       options.output = options.restart; // a restart continues into its own folder
-    const fs::path target = check_output_folder(options, fs::path(options.case_file).stem().string());
-    StateArrays resume;
-    if (!options.restart.empty())
-      resume = read_checkpoint((fs::path(options.restart) / "checkpoint.h5").string());
+    const fs::path target = check_output_folder(options.output, fs::path(options.case_file).stem().string(),
+                                                options.force, options.restart);
     for (const auto &w : case_file.warnings)
       std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
+    return run_into_folder(case_file, target, options.force, options.quiet, nullptr, options.restart);
+  }
+
+  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, const bool force,
+                      const bool quiet, Summary *result, const std::string &restart)
+  {
+    StateArrays resume;
+    if (!restart.empty())
+      resume = read_checkpoint((fs::path(restart) / "checkpoint.h5").string());
 
     // Everything checked: from here on we write, but only into the staging folder.
     std::error_code ec;
@@ -302,13 +308,13 @@ namespace coupling
     {
       write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
       ResultsFile results((staging / "results.h5").string());
-      ProgressDisplay progress(case_file.parameters.output.progress && !options.quiet);
-      if (!options.restart.empty())
+      ProgressDisplay progress(case_file.parameters.output.progress && !quiet);
+      if (!restart.empty())
       {
         // the interrupted run's snapshots up to its checkpoint come first
         const auto scalars = resume.find("driver.scalars");
         if (scalars != resume.end() && !scalars->second.empty())
-          results.copy_snapshots((fs::path(options.restart) / "results.h5").string(), scalars->second[0]);
+          results.copy_snapshots((fs::path(restart) / "results.h5").string(), scalars->second[0]);
       }
       RecordingObserver observer(results, progress, staging);
       const StopSignals stop_signals;
@@ -330,13 +336,15 @@ namespace coupling
       try
       {
         Summary summary =
-          run_case(case_file.parameters, observer, options.restart.empty() ? nullptr : &resume);
+          run_case(case_file.parameters, observer, restart.empty() ? nullptr : &resume);
         progress.finish();
         if (summary.wall_seconds <= 0)
           summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         write_all(&summary);
         publish(staging, target);
-        if (!options.quiet)
+        if (result)
+          *result = summary;
+        if (!quiet)
           std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
                        summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
         return 0;
@@ -360,7 +368,7 @@ namespace coupling
         failed += ".failed";
         if (fs::exists(failed))
         {
-          if (options.force)
+          if (force)
             fs::remove_all(failed);
           else
             failed = sibling(failed, "new");
