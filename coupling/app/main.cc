@@ -7,6 +7,7 @@
 // culprit and what is accepted), 3 unstable run.
 #include <coupling/calibrate.h>
 #include <coupling/cli.h>
+#include <coupling/diagnose.h>
 #include <coupling/run_case.h>
 #include <coupling/run_command.h>
 
@@ -30,6 +31,8 @@ namespace
     {"run", "run one UCS / BTS / CTCS case from a .prm file", &coupling::run_help, &coupling::run_main},
     {"calibrate", "back-calculate Mohr-Coulomb c, phi from UCS and BTS (Eqs. 14-15)", &coupling::calibrate_help,
      &coupling::calibrate_main},
+    {"diagnose", "what the simulation gets wrong on measured data, the cause and the gain",
+     &coupling::diagnose::diagnose_help, &coupling::diagnose::diagnose_main},
   };
 
   std::vector<std::string> command_names()
