@@ -674,7 +674,26 @@ namespace coupling::diagnose
                                 "the measured c, phi: they are inconsistent with the strength rows"
                               : "");
     }
-    std::string model_name = "linear Mohr-Coulomb (measured c, phi, E), rigid frictionless platens, platen displacement";
+    // competing explanations of the first named effect
+    if (out.identified.front() != "none")
+    {
+      double best = 0;
+      for (const auto &c : out.candidates)
+        if (c.name == out.identified.front())
+          best = c.delta_bic;
+      for (const auto &c : out.candidates)
+        if (c.applicable && c.reason.empty() && c.delta_bic > options.bic_threshold &&
+            std::find(out.identified.begin(), out.identified.end(), c.name) == out.identified.end() &&
+            c.delta_bic > best - options.bic_threshold)
+        {
+          out.indistinguishable.push_back(c.name);
+          out.notes.push_back(c.name + " explains the data about as well as " + out.identified.front() +
+                              " (Delta BIC " + std::to_string(c.delta_bic) + " vs " + std::to_string(best) +
+                              "): these data cannot tell them apart");
+        }
+    }
+    std::string model_name = "linear Mohr-Coulomb (c, phi measured or calibrated from UCS and BTS), measured E, "
+                             "rigid frictionless platens, platen displacement";
     out.baseline = {model_name, base_rms.norm, base_ho.norm, base_rms.strength, base_ho.strength,
                     base_rms.curve, base_ho.curve, {}};
     std::string ext_name = current.refit ? "baseline, strength refitted" : "baseline";

@@ -232,6 +232,7 @@ namespace coupling::diagnose
       if (!up)
       {
         petsc_check(PetscInitializeNoArguments(), "PetscInitialize");
+        PetscPushErrorHandler(PetscReturnErrorHandler, nullptr); // errors become exceptions here
         std::atexit([] { PetscFinalize(); });
       }
     }
@@ -252,7 +253,7 @@ namespace coupling::diagnose
       PetscScalar *x;
       petsc_check(VecGetArray(X, &x), "VecGetArray");
       for (PetscInt i = 0; i < n; ++i)
-        x[i] = std::clamp(x0[i], 0.0, 1.0);
+        x[i] = std::clamp(x0[i], 0.051, 0.949); // POUNDERS needs the start a trust radius inside
       petsc_check(VecRestoreArray(X, &x), "VecRestoreArray");
       petsc_check(TaoCreate(PETSC_COMM_SELF, &tao), "TaoCreate");
       petsc_check(TaoSetType(tao, TAOPOUNDERS), "TaoSetType");

@@ -77,6 +77,8 @@ namespace coupling::diagnose
       r << "# cosim diagnose\n\nData: `" << data_dir << "` (" << d.n_strength << " strengths incl. curve peaks, "
         << d.n_curve_points << " pre-peak curve points).\n\n";
       r << "## Named cause: " << ids << "\n\n";
+      for (const auto &i : d.indistinguishable)
+        r << "Competing explanation the data cannot tell apart from it: `" << i << "` (see the candidates table).\n\n";
       if (d.identified.front() == "none")
         r << "No extension earns its parameters: the baseline explains the data within their noise.\n\n";
       else
@@ -149,6 +151,9 @@ namespace coupling::diagnose
     o << "{\n  \"identified\": [";
     for (std::size_t i = 0; i < d.identified.size(); ++i)
       o << (i ? ", " : "") << quote(d.identified[i]);
+    o << "],\n  \"indistinguishable\": [";
+    for (std::size_t i = 0; i < d.indistinguishable.size(); ++i)
+      o << (i ? ", " : "") << quote(d.indistinguishable[i]);
     o << "],\n  \"candidates\": [";
     for (std::size_t i = 0; i < d.candidates.size(); ++i)
     {

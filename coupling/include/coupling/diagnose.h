@@ -103,6 +103,9 @@ namespace coupling::diagnose
   struct Diagnosis
   {
     std::vector<std::string> identified;
+    /// Effects whose own Delta BIC comes within Options::bic_threshold of a named one's: the data
+    /// cannot tell them apart from it (a competing explanation, not named).
+    std::vector<std::string> indistinguishable;
     std::vector<Candidate> candidates;
     ModelError baseline, extended;
     double gain = 1, heldout_gain = 1;
