@@ -4,6 +4,7 @@
 /// row, curve peak, pre-peak curve point) with the baseline and the candidate extensions, and the
 /// TAO least-squares fit of a chosen set of extensions. Internal to coupling/src.
 
+#include <coupling/case_parameters.h>
 #include <coupling/diagnose.h>
 
 #include <functional>
@@ -97,6 +98,11 @@ namespace coupling::diagnose
   FitResult fit(const Surrogate &model, const std::vector<Datum> &data,
                 const std::function<double(const Datum &)> &noise,
                 const std::vector<std::vector<double>> &starts);
+
+  /// Peak stress [MPa] of one coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens)
+  /// with `rock` at particle spacing `spacing` [m].
+  double coupled_peak_stress(const std::string &test, double s3_MPa, const coupling::RockParameters &rock,
+                             double spacing);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

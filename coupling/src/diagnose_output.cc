@@ -201,7 +201,10 @@ namespace coupling::diagnose
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
            "  --force              replace an existing OUTDIR\n"
-           "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n";
+           "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
+           "  --coupled-spacing DX also run the coupled simulator (run_case, spacing DX [m]) on the\n"
+           "                       datum the baseline misses most, baseline and extended rock model\n"
+           "                       (minutes per run)\n";
   }
 
   int diagnose_main(const std::vector<std::string> &args)
@@ -228,10 +231,17 @@ namespace coupling::diagnose
           throw InputError("cosim diagnose: --bic-threshold takes a non-negative number");
         options.bic_threshold = *v;
       }
+      else if (a == "--coupled-spacing")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || !(*v > 0 && *v < 0.01))
+          throw InputError("cosim diagnose: --coupled-spacing takes a particle spacing in m, 0 < dx < 0.01");
+        options.coupled_spacing = *v;
+      }
       else if (!a.empty() && a[0] == '-')
         throw InputError("cosim diagnose: unknown option '" + a + "'" +
-                         did_you_mean(a, {"--output", "--force", "--bic-threshold", "--help"}) +
-                         "; accepted: -o OUTDIR, --force, --bic-threshold X");
+                         did_you_mean(a, {"--output", "--force", "--bic-threshold", "--coupled-spacing", "--help"}) +
+                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX");
       else if (data_dir.empty())
         data_dir = a;
       else
