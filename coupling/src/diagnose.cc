@@ -23,9 +23,9 @@ namespace coupling::diagnose
 {
   const std::vector<std::string> &effect_names()
   {
-    static const std::vector<std::string> names = {"tension_cutoff", "envelope_curvature", "crack_closure",
-                                                   "machine_compliance", "end_friction", "heterogeneity",
-                                                   "loading_rate"};
+    static const std::vector<std::string> names = {
+      "tension_cutoff", "envelope_curvature", "crack_closure", "machine_compliance",
+      "end_friction",   "heterogeneity",      "loading_rate"};
     return names;
   }
 
@@ -36,7 +36,8 @@ namespace coupling::diagnose
     /// Index of the peak force and pre-peak rows of a curve.
     std::size_t peak_index(const Curve &c)
     {
-      return static_cast<std::size_t>(std::max_element(c.force.begin(), c.force.end()) - c.force.begin());
+      return static_cast<std::size_t>(std::max_element(c.force.begin(), c.force.end()) -
+                                      c.force.begin());
     }
 
     /// Nominal strain rate of a curve: slope of displacement over time between 10 and 90 % of the
@@ -44,7 +45,7 @@ namespace coupling::diagnose
     double strain_rate_of(const Curve &c)
     {
       const std::size_t ip = peak_index(c);
-      const double fp = c.force[ip];
+      const double fp      = c.force[ip];
       std::size_t a = 0, b = ip;
       for (std::size_t i = 0; i <= ip; ++i)
         if (c.force[i] < 0.1 * fp)
@@ -79,8 +80,8 @@ namespace coupling::diagnose
     double curve_noise(const Curve &c)
     {
       const std::size_t ip = peak_index(c);
-      double s = 0;
-      int n = 0;
+      double s             = 0;
+      int n                = 0;
       for (std::size_t i = 1; i + 1 <= ip; ++i)
       {
         const double e = c.displacement[i] - 0.5 * (c.displacement[i - 1] + c.displacement[i + 1]);
@@ -88,7 +89,8 @@ namespace coupling::diagnose
         ++n;
       }
       const double sd = n > 0 ? std::sqrt(s / n / 1.5) : 0;
-      return std::max(sd, 2e-3 * std::abs(c.displacement[ip])); // floor: 0.2 % of the peak displacement
+      return std::max(sd,
+                      2e-3 * std::abs(c.displacement[ip])); // floor: 0.2 % of the peak displacement
     }
 
     struct Study
@@ -131,7 +133,7 @@ namespace coupling::diagnose
       for (const auto &name : names)
       {
         GroupBase g;
-        g.group = name;
+        g.group              = name;
         const MaterialRow *m = nullptr;
         for (const auto &r : data.materials)
           if (r.group == name)
@@ -139,7 +141,7 @@ namespace coupling::diagnose
         // strength: measured c, phi; else calibrated from UCS and BTS (Eqs. 14-15)
         auto mean_of = [&](const char *test) {
           double s = 0;
-          int n = 0;
+          int n    = 0;
           for (const auto &r : data.strengths)
             if (r.group == name && r.test == test)
             {
@@ -148,7 +150,8 @@ namespace coupling::diagnose
             }
           return n ? std::optional<double>(s / n) : std::nullopt;
         };
-        std::optional<double> ucs = m ? m->UCS_MPa : std::nullopt, bts = m ? m->BTS_MPa : std::nullopt;
+        std::optional<double> ucs = m ? m->UCS_MPa : std::nullopt,
+                              bts = m ? m->BTS_MPa : std::nullopt;
         if (!ucs)
           ucs = mean_of("UCS");
         if (!bts)
@@ -180,17 +183,19 @@ namespace coupling::diagnose
           g.ucs    = *ucs;
           g.phi    = 30;
           g.source = "UCS measured, phi = 30 deg assumed (no BTS, c or phi)";
-          notes.push_back("group " + name + ": no BTS or c, phi; the baseline assumes phi = 30 deg");
+          notes.push_back("group " + name +
+                          ": no BTS or c, phi; the baseline assumes phi = 30 deg");
         }
         else
-          throw InputError("group " + name + ": no strength (UCS, BTS or c, phi) in material.csv, strength.csv "
-                                             "or a UCS curve; the baseline needs one");
+          throw InputError("group " + name +
+                           ": no strength (UCS, BTS or c, phi) in material.csv, strength.csv "
+                           "or a UCS curve; the baseline needs one");
         // stiffness: measured E; else from specimen-displacement curves; else platen curves
         double E = m && m->E_GPa ? *m->E_GPa * 1e3 : 0;
         for (int pass = 0; pass < 2 && E <= 0; ++pass)
         {
           double s = 0;
-          int n = 0;
+          int n    = 0;
           for (const auto &c : data.curves)
             if (c.group == name && c.test != "BTS" && c.platen_displacement == (pass == 1))
               if (const double e = secant_modulus(c); e > 0)
@@ -202,8 +207,9 @@ namespace coupling::diagnose
           {
             E = s / n;
             if (pass == 1)
-              notes.push_back("group " + name + ": E from platen-displacement curves (no measured E): a "
-                                                "machine compliance cannot be told from the rock's E");
+              notes.push_back("group " + name +
+                              ": E from platen-displacement curves (no measured E): a "
+                              "machine compliance cannot be told from the rock's E");
           }
         }
         g.E = E > 0 ? E : 50e3;
@@ -230,9 +236,9 @@ namespace coupling::diagnose
       }
       for (const auto &c : data.curves)
       {
-        const int src = source++;
+        const int src        = source++;
         const std::size_t ip = peak_index(c);
-        const double fp = c.force[ip];
+        const double fp      = c.force[ip];
         Datum p;
         p.kind   = Datum::strength;
         p.test   = c.test;
@@ -266,12 +272,12 @@ namespace coupling::diagnose
               best = i;
           if (k > 0 && best == last)
             continue;
-          last = best;
-          Datum q  = p;
-          q.kind   = Datum::curve_point;
-          q.force  = c.force[best];
-          q.length = c.length;
-          q.platen = c.platen_displacement;
+          last       = best;
+          Datum q    = p;
+          q.kind     = Datum::curve_point;
+          q.force    = c.force[best];
+          q.length   = c.length;
+          q.platen   = c.platen_displacement;
           q.measured = c.displacement[best];
           all.push_back(q);
         }
@@ -304,7 +310,9 @@ namespace coupling::diagnose
           platen = platen || d.platen;
         }
       const auto spread = [](const std::vector<double> &v) {
-        return v.empty() ? 1.0 : *std::max_element(v.begin(), v.end()) / *std::min_element(v.begin(), v.end());
+        return v.empty()
+                 ? 1.0
+                 : *std::max_element(v.begin(), v.end()) / *std::min_element(v.begin(), v.end());
       };
       auto na = [&](const char *e, const std::string &why) { s.not_applicable[e] = why; };
       if (!(tension && compression))
@@ -322,11 +330,13 @@ namespace coupling::diagnose
       if (platen && !e_known)
         na("machine_compliance", "E of the rock was not measured independently of the frame");
       if (spread(slender) < 1.2)
-        na("end_friction", "needs compressive curves of two or more slenderness ratios L/D (friction and "
-                           "strength are one factor at a single L/D)");
+        na("end_friction",
+           "needs compressive curves of two or more slenderness ratios L/D (friction and "
+           "strength are one factor at a single L/D)");
       if (spread(volume) < 1.5)
-        na("heterogeneity", "needs compressive curves of specimens of different volume (weakest-link size "
-                            "effect)");
+        na("heterogeneity",
+           "needs compressive curves of specimens of different volume (weakest-link size "
+           "effect)");
       if (spread(rates) < 3.0)
         na("loading_rate", "needs compressive curves at strain rates half a decade or more apart");
       for (const auto &e : effect_names())
@@ -340,17 +350,18 @@ namespace coupling::diagnose
       bool refit = false;
       std::vector<Parameter> parameters;
       FitResult result;
-      double bic = 0;
+      double bic    = 0;
       bool at_bound = false;
     };
 
     int n_strength(const std::vector<Datum> &d)
     {
-      return static_cast<int>(std::count_if(d.begin(), d.end(), [](const Datum &x) { return x.kind == Datum::strength; }));
+      return static_cast<int>(std::count_if(
+        d.begin(), d.end(), [](const Datum &x) { return x.kind == Datum::strength; }));
     }
 
-    Fitted fit_model(const Study &s, const EffectSet &effects, const bool refit, const std::vector<Datum> &data,
-                     const std::map<std::string, double> &warm = {})
+    Fitted fit_model(const Study &s, const EffectSet &effects, const bool refit,
+                     const std::vector<Datum> &data, const std::map<std::string, double> &warm = {})
     {
       const Surrogate model(s.groups, effects, refit);
       Fitted f;
@@ -367,27 +378,30 @@ namespace coupling::diagnose
         for (double t : {0.15, 0.5, 0.85}) // effect parameters across their box (local optimiser)
         {
           std::vector<double> st = base;
-          bool changed = false;
+          bool changed           = false;
           for (std::size_t i = 0; i < st.size(); ++i)
             if (f.parameters[i].name.rfind("UCS_", 0) != 0 && f.parameters[i].name != "phi" &&
                 !warm.count(f.parameters[i].name))
             {
               const auto &q = f.parameters[i];
-              st[i]        = q.log ? q.lo * std::pow(q.hi / q.lo, t) : q.lo + (q.hi - q.lo) * t;
-              changed      = true;
+              st[i]         = q.log ? q.lo * std::pow(q.hi / q.lo, t) : q.lo + (q.hi - q.lo) * t;
+              changed       = true;
             }
           if (changed)
             starts.push_back(st);
         }
-      f.result = fit(model, data, [&s](const Datum &d) { return s.noise(d); }, starts);
-      f.bic    = f.result.chi2 + static_cast<double>(f.parameters.size()) * std::log(static_cast<double>(data.size()));
+      f.result = fit(
+        model, data, [&s](const Datum &d) { return s.noise(d); }, starts);
+      f.bic = f.result.chi2 +
+              static_cast<double>(f.parameters.size()) * std::log(static_cast<double>(data.size()));
       for (std::size_t i = 0; i < f.parameters.size(); ++i)
       {
         const auto &q = f.parameters[i];
         if (q.name.rfind("UCS_", 0) == 0 || q.name == "phi")
           continue;
         const double v = f.result.values[i];
-        const double t = q.log ? std::log(v / q.lo) / std::log(q.hi / q.lo) : (v - q.lo) / (q.hi - q.lo);
+        const double t =
+          q.log ? std::log(v / q.lo) / std::log(q.hi / q.lo) : (v - q.lo) / (q.hi - q.lo);
         if (t < 0.005 || t > 0.995)
           f.at_bound = true;
       }
@@ -408,7 +422,8 @@ namespace coupling::diagnose
       double norm = 0, strength = 0, curve = 0;
     };
 
-    Rms rms_of(const Study &s, const Surrogate &m, const std::vector<double> &p, const std::vector<Datum> &data)
+    Rms rms_of(const Study &s, const Surrogate &m, const std::vector<double> &p,
+               const std::vector<Datum> &data)
     {
       double a = 0, b = 0, c = 0;
       int nb = 0, nc = 0;
@@ -427,7 +442,8 @@ namespace coupling::diagnose
           ++nc;
         }
       }
-      return {data.empty() ? 0 : std::sqrt(a / data.size()), nb ? std::sqrt(b / nb) : 0, nc ? std::sqrt(c / nc) : 0};
+      return {data.empty() ? 0 : std::sqrt(a / data.size()), nb ? std::sqrt(b / nb) : 0,
+              nc ? std::sqrt(c / nc) : 0};
     }
 
     /// Leave-one-specimen-out (each strength row or curve is one fold) up to 20 specimens; beyond,
@@ -483,14 +499,15 @@ namespace coupling::diagnose
     {
       std::vector<FittedValue> v;
       for (std::size_t i = 0; i < f.parameters.size(); ++i)
-        v.push_back({f.parameters[i].name, f.parameters[i].unit, f.result.values[i], f.result.standard_errors[i]});
+        v.push_back({f.parameters[i].name, f.parameters[i].unit, f.result.values[i],
+                     f.result.standard_errors[i]});
       // derived: the cut-off stress per group
       const auto vals = values_of(f);
       if (vals.count("T0_ratio"))
         for (const auto &g : s.groups)
         {
           const double ucs = vals.count("UCS_" + g.group) ? vals.at("UCS_" + g.group) : g.ucs;
-          double se = 0;
+          double se        = 0;
           for (std::size_t i = 0; i < f.parameters.size(); ++i)
             if (f.parameters[i].name == "T0_ratio")
               se = f.result.standard_errors[i] * ucs;
@@ -507,8 +524,8 @@ namespace coupling::diagnose
     s.all    = make_data(data, s.curve_sd);
     check_applicability(s);
     Diagnosis out;
-    out.n_strength     = n_strength(s.all);
-    out.n_curve_points = static_cast<int>(s.all.size()) - out.n_strength;
+    out.n_strength          = n_strength(s.all);
+    out.n_curve_points      = static_cast<int>(s.all.size()) - out.n_strength;
     const bool has_strength = out.n_strength > 0;
 
     // strength noise: replicate specimens (same test, group, confinement) if there are enough
@@ -521,7 +538,7 @@ namespace coupling::diagnose
         reps[k.str()].push_back(r.test == "BTS" ? -r.sigma3 : r.sigma1);
       }
       double ss = 0;
-      int dof = 0;
+      int dof   = 0;
       for (const auto &[k, v] : reps)
         if (v.size() > 1)
         {
@@ -533,8 +550,9 @@ namespace coupling::diagnose
       if (dof >= 3)
       {
         s.strength_rel_noise = std::max(std::sqrt(ss / dof), 2e-3);
-        out.notes.push_back("strength noise " + std::to_string(100 * s.strength_rel_noise) + " % from " +
-                            std::to_string(dof) + " degrees of freedom of replicate specimens");
+        out.notes.push_back("strength noise " + std::to_string(100 * s.strength_rel_noise) +
+                            " % from " + std::to_string(dof) +
+                            " degrees of freedom of replicate specimens");
       }
       else if (has_strength)
       {
@@ -553,13 +571,15 @@ namespace coupling::diagnose
         if (dofr >= 2)
         {
           s.strength_rel_noise = std::max(std::sqrt(f.result.chi2 / dofr), 2e-3);
-          out.notes.push_back("strength noise " + std::to_string(100 * s.strength_rel_noise) +
-                              " % from the residuals of the richest strength model (no replicates)");
+          out.notes.push_back(
+            "strength noise " + std::to_string(100 * s.strength_rel_noise) +
+            " % from the residuals of the richest strength model (no replicates)");
         }
         else
         {
           s.strength_rel_noise = 0.05;
-          out.notes.push_back("strength noise 5 % assumed (no replicates, too few rows to estimate it)");
+          out.notes.push_back(
+            "strength noise 5 % assumed (no replicates, too few rows to estimate it)");
         }
       }
     }
@@ -592,8 +612,8 @@ namespace coupling::diagnose
     for (const auto &e : effect_names())
     {
       Candidate c;
-      c.name = e;
-      c.error_before = base_rms.norm;
+      c.name           = e;
+      c.error_before   = base_rms.norm;
       c.heldout_before = base_ho.norm;
       if (!s.applicable.count(e))
       {
@@ -629,7 +649,8 @@ namespace coupling::diagnose
           continue;
         EffectSet trial = chosen;
         trial.insert(e);
-        Fitted f = chosen.empty() ? single[e] : fit_model(s, trial, true, s.all, values_of(current));
+        Fitted f =
+          chosen.empty() ? single[e] : fit_model(s, trial, true, s.all, values_of(current));
         if (!chosen.empty())
         {
           // also from the single-effect optimum of e (a warm start for its own parameters)
@@ -660,7 +681,8 @@ namespace coupling::diagnose
     // is not kept
     const Surrogate ext_model(s.groups, current.effects, current.refit);
     Rms ext_rms = rms_of(s, ext_model, current.result.values, s.all);
-    Rms ext_ho  = current.parameters.empty() ? base_ho : heldout(s, current.effects, current.refit, &current);
+    Rms ext_ho =
+      current.parameters.empty() ? base_ho : heldout(s, current.effects, current.refit, &current);
     if (!out.identified.empty() && !(ext_ho.norm < base_ho.norm))
     {
       out.notes.push_back("the BIC-selected extension (" + out.identified.front() +
@@ -671,10 +693,11 @@ namespace coupling::diagnose
     {
       out.identified = {"none"};
       if (chosen.size() > 0 || reference.refit)
-        out.notes.push_back(reference.refit && chosen.empty()
-                              ? "the baseline's strength refitted (no extension) explains the data better than "
-                                "the measured c, phi: they are inconsistent with the strength rows"
-                              : "");
+        out.notes.push_back(
+          reference.refit && chosen.empty()
+            ? "the baseline's strength refitted (no extension) explains the data better than "
+              "the measured c, phi: they are inconsistent with the strength rows"
+            : "");
     }
     // competing explanations of the first named effect
     if (out.identified.front() != "none")
@@ -685,35 +708,39 @@ namespace coupling::diagnose
           best = c.delta_bic;
       for (const auto &c : out.candidates)
         if (c.applicable && c.reason.empty() && c.delta_bic > options.bic_threshold &&
-            std::find(out.identified.begin(), out.identified.end(), c.name) == out.identified.end() &&
+            std::find(out.identified.begin(), out.identified.end(), c.name) ==
+              out.identified.end() &&
             c.delta_bic > best - options.bic_threshold)
         {
           out.indistinguishable.push_back(c.name);
-          out.notes.push_back(c.name + " explains the data about as well as " + out.identified.front() +
-                              " (Delta BIC " + std::to_string(c.delta_bic) + " vs " + std::to_string(best) +
+          out.notes.push_back(c.name + " explains the data about as well as " +
+                              out.identified.front() + " (Delta BIC " +
+                              std::to_string(c.delta_bic) + " vs " + std::to_string(best) +
                               "): these data cannot tell them apart");
         }
     }
-    std::string model_name = "linear Mohr-Coulomb (c, phi measured or calibrated from UCS and BTS), measured E, "
-                             "rigid frictionless platens, platen displacement";
-    out.baseline = {model_name, base_rms.norm, base_ho.norm, base_rms.strength, base_ho.strength,
-                    base_rms.curve, base_ho.curve, {}};
+    std::string model_name =
+      "linear Mohr-Coulomb (c, phi measured or calibrated from UCS and BTS), measured E, "
+      "rigid frictionless platens, platen displacement";
+    out.baseline         = {model_name,       base_rms.norm,  base_ho.norm,  base_rms.strength,
+                            base_ho.strength, base_rms.curve, base_ho.curve, {}};
     std::string ext_name = current.refit ? "baseline, strength refitted" : "baseline";
     for (const auto &e : current.effects)
       ext_name += " + " + e;
     if (out.identified == std::vector<std::string>{"none"})
     {
-      ext_rms = base_rms;
-      ext_ho  = base_ho;
+      ext_rms  = base_rms;
+      ext_ho   = base_ho;
       ext_name = model_name;
     }
     else
       out.extended_parameters = fitted_values(s, current);
-    out.extended = {ext_name, ext_rms.norm, ext_ho.norm, ext_rms.strength, ext_ho.strength, ext_rms.curve,
-                    ext_ho.curve, {}};
+    out.extended     = {ext_name,        ext_rms.norm,  ext_ho.norm,  ext_rms.strength,
+                        ext_ho.strength, ext_rms.curve, ext_ho.curve, {}};
     out.gain         = ext_rms.norm > 0 ? base_rms.norm / ext_rms.norm : 1;
     out.heldout_gain = ext_ho.norm > 0 ? base_ho.norm / ext_ho.norm : 1;
-    out.notes.erase(std::remove(out.notes.begin(), out.notes.end(), std::string()), out.notes.end());
+    out.notes.erase(std::remove(out.notes.begin(), out.notes.end(), std::string()),
+                    out.notes.end());
     // the coupled simulator on the datum the baseline misses most (optional: minutes per run)
     if (options.coupled_spacing > 0 && has_strength)
     {
@@ -750,8 +777,8 @@ namespace coupling::diagnose
       };
       mc(rb, g->ucs, g->phi);
       coupling::RockParameters re = rb;
-      const auto v = values_of(current);
-      const double ucs_e = v.count("UCS_" + g->group) ? v.at("UCS_" + g->group) : g->ucs;
+      const auto v                = values_of(current);
+      const double ucs_e          = v.count("UCS_" + g->group) ? v.at("UCS_" + g->group) : g->ucs;
       if (current.effects.count("envelope_curvature"))
       {
         re.model         = "hoek-brown";
@@ -767,25 +794,31 @@ namespace coupling::diagnose
           re.model = "mohr-coulomb-cutoff";
       }
       const double s3 = worst->test == "BTS" ? 0.0 : worst->sigma3;
-      const std::string key = worst->test + "_" + g->group + (worst->test == "CTCS" ? "_" + std::to_string(static_cast<int>(s3)) + "MPa" : "");
-      const double pb = coupled_peak_stress(worst->test, s3, rb, options.coupled_spacing);
-      const double pe = out.identified.front() == "none" ? pb : coupled_peak_stress(worst->test, s3, re, options.coupled_spacing);
+      const std::string key =
+        worst->test + "_" + g->group +
+        (worst->test == "CTCS" ? "_" + std::to_string(static_cast<int>(s3)) + "MPa" : "");
+      const double pb   = coupled_peak_stress(worst->test, s3, rb, options.coupled_spacing);
+      const double pe   = out.identified.front() == "none"
+                            ? pb
+                            : coupled_peak_stress(worst->test, s3, re, options.coupled_spacing);
       const double meas = worst->test == "BTS" ? worst->measured : worst->measured;
-      out.baseline.coupled[key + "_measured_MPa"] = meas;
-      out.baseline.coupled[key + "_peak_MPa"]     = pb;
+      out.baseline.coupled[key + "_measured_MPa"]   = meas;
+      out.baseline.coupled[key + "_peak_MPa"]       = pb;
       out.baseline.coupled[key + "_relative_error"] = std::abs(pb - meas) / meas;
-      out.extended.coupled[key + "_measured_MPa"] = meas;
-      out.extended.coupled[key + "_peak_MPa"]     = pe;
+      out.extended.coupled[key + "_measured_MPa"]   = meas;
+      out.extended.coupled[key + "_peak_MPa"]       = pe;
       out.extended.coupled[key + "_relative_error"] = std::abs(pe - meas) / meas;
-      out.notes.push_back("coupled check: " + key + " with run_case at spacing " + std::to_string(options.coupled_spacing) +
-                          " m; effects outside the rock model (compliance, friction, rate, closure) are not in it");
+      out.notes.push_back(
+        "coupled check: " + key + " with run_case at spacing " +
+        std::to_string(options.coupled_spacing) +
+        " m; effects outside the rock model (compliance, friction, rate, closure) are not in it");
     }
     // tables for the plots: envelopes from the largest tension to the largest confinement
     {
-      const bool ext_on = out.identified != std::vector<std::string>{"none"};
-      const Surrogate &em = ext_on ? ext_model : base_model;
+      const bool ext_on            = out.identified != std::vector<std::string>{"none"};
+      const Surrogate &em          = ext_on ? ext_model : base_model;
       const std::vector<double> ep = ext_on ? current.result.values : std::vector<double>{};
-      double s3max = 10;
+      double s3max                 = 10;
       for (const auto &d : s.all)
         if (d.kind == Datum::strength)
           s3max = std::max(s3max, d.sigma3);
@@ -793,7 +826,8 @@ namespace coupling::diagnose
       env << "group,sigma3_MPa,baseline_sigma1_MPa,extended_sigma1_MPa\n";
       for (const auto &g : s.groups)
       {
-        const double tb = base_model.tensile_strength(g.group, {}), te = em.tensile_strength(g.group, ep);
+        const double tb = base_model.tensile_strength(g.group, {}),
+                     te = em.tensile_strength(g.group, ep);
         env << g.group << ',' << -tb << ",0,\n" << g.group << ',' << -te << ",,0\n";
         for (int i = 0; i <= 40; ++i)
         {
@@ -806,14 +840,15 @@ namespace coupling::diagnose
       std::ostringstream pts;
       pts << "kind,source,group,test,sigma3_MPa,force_kN,measured,baseline,extended\n";
       for (const auto &d : s.all)
-        pts << (d.kind == Datum::strength ? "strength" : "curve") << ',' << d.source << ',' << d.group << ','
-            << d.test << ',' << d.sigma3 << ',' << d.force << ',' << d.measured << ','
-            << base_model.predict(d, {}) << ',' << em.predict(d, ep) << '\n';
+        pts << (d.kind == Datum::strength ? "strength" : "curve") << ',' << d.source << ','
+            << d.group << ',' << d.test << ',' << d.sigma3 << ',' << d.force << ',' << d.measured
+            << ',' << base_model.predict(d, {}) << ',' << em.predict(d, ep) << '\n';
       out.points_table = pts.str();
     }
     for (const auto &g : s.groups)
-      out.notes.push_back("group " + g.group + ": baseline UCS " + std::to_string(g.ucs) + " MPa, phi " +
-                          std::to_string(g.phi) + " deg (" + g.source + "), E " + std::to_string(g.E / 1e3) + " GPa");
+      out.notes.push_back("group " + g.group + ": baseline UCS " + std::to_string(g.ucs) +
+                          " MPa, phi " + std::to_string(g.phi) + " deg (" + g.source + "), E " +
+                          std::to_string(g.E / 1e3) + " GPa");
     return out;
   }
 } // namespace coupling::diagnose

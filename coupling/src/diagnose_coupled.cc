@@ -8,8 +8,8 @@
 
 namespace coupling::diagnose
 {
-  double coupled_peak_stress(const std::string &test, const double s3_MPa, const RockParameters &rock,
-                             const double spacing)
+  double coupled_peak_stress(const std::string &test, const double s3_MPa,
+                             const RockParameters &rock, const double spacing)
   {
     CaseParameters c;
     c.name               = "diagnose-check";

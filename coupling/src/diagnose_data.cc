@@ -32,14 +32,15 @@ namespace coupling::diagnose
           throw InputError(t.where(r) + ": empty group; give a group name (e.g. M1)");
         for (const auto &o : rows)
           if (o.group == m.group)
-            throw InputError(t.where(r) + ": group '" + m.group + "' listed twice; one row per group");
-        m.E_GPa   = get(r, "E_GPa");
-        m.nu      = get(r, "nu");
-        m.density = get(r, "density_kg_m3");
-        m.UCS_MPa = get(r, "UCS_MPa");
-        m.BTS_MPa = get(r, "BTS_MPa");
-        m.c_MPa   = get(r, "c_MPa");
-        m.phi_deg = get(r, "phi_deg");
+            throw InputError(t.where(r) + ": group '" + m.group +
+                             "' listed twice; one row per group");
+        m.E_GPa             = get(r, "E_GPa");
+        m.nu                = get(r, "nu");
+        m.density           = get(r, "density_kg_m3");
+        m.UCS_MPa           = get(r, "UCS_MPa");
+        m.BTS_MPa           = get(r, "BTS_MPa");
+        m.c_MPa             = get(r, "c_MPa");
+        m.phi_deg           = get(r, "phi_deg");
         const auto positive = [&](const std::optional<double> &v, const char *col) {
           if (v && !(*v > 0))
             throw InputError(t.where(r) + ": " + col + " = " + std::to_string(*v) +
@@ -57,7 +58,8 @@ namespace coupling::diagnose
           throw InputError(t.where(r) + ": phi_deg = " + std::to_string(*m.phi_deg) +
                            "; accepted: 0 < phi_deg < 90 or an empty cell");
         if (m.c_MPa.has_value() != m.phi_deg.has_value())
-          throw InputError(t.where(r) + ": c_MPa and phi_deg must be given together or both left empty");
+          throw InputError(t.where(r) +
+                           ": c_MPa and phi_deg must be given together or both left empty");
         if (m.UCS_MPa && m.BTS_MPa && !(*m.BTS_MPa < *m.UCS_MPa))
           throw InputError(t.where(r) + ": BTS_MPa must be below UCS_MPa");
         rows.push_back(m);
@@ -110,23 +112,25 @@ namespace coupling::diagnose
       const auto key = [&](const std::string &k) -> std::string {
         const auto it = keys.find(k);
         if (it == keys.end())
-          throw InputError(path + ": header line '# " + k + ": ...' missing (curves need test, group, "
-                                  "diameter_mm, length_mm or thickness_mm, displacement)");
+          throw InputError(path + ": header line '# " + k +
+                           ": ...' missing (curves need test, group, "
+                           "diameter_mm, length_mm or thickness_mm, displacement)");
         return it->second;
       };
       const auto number = [&](const std::string &k) {
         const auto v = parse_finite_double(key(k));
         if (!v || *v < 0)
-          throw InputError(path + ": header '" + k + ": " + key(k) + "' is not a non-negative number");
+          throw InputError(path + ": header '" + k + ": " + key(k) +
+                           "' is not a non-negative number");
         return *v;
       };
       c.test  = key("test");
       c.group = key("group");
       if (c.test != "UCS" && c.test != "CTCS" && c.test != "BTS")
         throw InputError(path + ": header 'test: " + c.test + "'; accepted: UCS, CTCS, BTS");
-      c.diameter = number("diameter_mm");
-      c.length   = keys.count("length_mm") ? number("length_mm") : number("thickness_mm");
-      c.confining = keys.count("confining_MPa") ? number("confining_MPa") : 0.0;
+      c.diameter          = number("diameter_mm");
+      c.length            = keys.count("length_mm") ? number("length_mm") : number("thickness_mm");
+      c.confining         = keys.count("confining_MPa") ? number("confining_MPa") : 0.0;
       const std::string d = key("displacement");
       if (d != "platen" && d != "specimen")
         throw InputError(path + ": header 'displacement: " + d + "'; accepted: platen, specimen");

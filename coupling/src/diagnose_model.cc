@@ -26,10 +26,13 @@ namespace coupling::diagnose
 {
   namespace
   {
-    constexpr double pi               = 3.14159265358979323846;
-    constexpr double reference_rate   = 1e-5; ///< quasi-static strain rate of strength rows [1/s]
-    constexpr double deg              = pi / 180.0;
-    bool             has(const EffectSet &e, const char *n) { return e.count(n) > 0; }
+    constexpr double pi             = 3.14159265358979323846;
+    constexpr double reference_rate = 1e-5; ///< quasi-static strain rate of strength rows [1/s]
+    constexpr double deg            = pi / 180.0;
+    bool has(const EffectSet &e, const char *n)
+    {
+      return e.count(n) > 0;
+    }
   } // namespace
 
   double closure_axial_strain(const double q, const double s3, const double E, const double r,
@@ -40,10 +43,11 @@ namespace coupling::diagnose
     return sph::rock::crack_closure_strain(s3, s3 + q, E, r * E, sigma_cc);
   }
 
-  Surrogate::Surrogate(const std::vector<GroupBase> &groups, const EffectSet &effects, const bool refit)
-    : groups_(groups)
-    , effects_(effects)
-    , refit_(refit)
+  Surrogate::Surrogate(const std::vector<GroupBase> &groups, const EffectSet &effects,
+                       const bool refit)
+      : groups_(groups)
+      , effects_(effects)
+      , refit_(refit)
   {
     const bool curved = has(effects, "envelope_curvature");
     if (refit)
@@ -94,7 +98,8 @@ namespace coupling::diagnose
     throw std::logic_error("diagnose: unknown group " + g);
   }
 
-  double Surrogate::value(const std::string &name, const std::vector<double> &p, const double fallback) const
+  double Surrogate::value(const std::string &name, const std::vector<double> &p,
+                          const double fallback) const
   {
     for (std::size_t i = 0; i < parameters_.size(); ++i)
       if (parameters_[i].name == name)
@@ -102,10 +107,11 @@ namespace coupling::diagnose
     return fallback;
   }
 
-  double Surrogate::envelope(const std::string &group, const double s3, const std::vector<double> &p) const
+  double Surrogate::envelope(const std::string &group, const double s3,
+                             const std::vector<double> &p) const
   {
-    const GroupBase &g   = groups_[group_index(group)];
-    const double     ucs = value("UCS_" + g.group, p, g.ucs);
+    const GroupBase &g = groups_[group_index(group)];
+    const double ucs   = value("UCS_" + g.group, p, g.ucs);
     if (has(effects_, "envelope_curvature"))
     {
       const double mi = value("m_i", p, 10.0);
@@ -117,9 +123,9 @@ namespace coupling::diagnose
 
   double Surrogate::tensile_strength(const std::string &group, const std::vector<double> &p) const
   {
-    const GroupBase &g   = groups_[group_index(group)];
-    const double     ucs = value("UCS_" + g.group, p, g.ucs);
-    double           t;
+    const GroupBase &g = groups_[group_index(group)];
+    const double ucs   = value("UCS_" + g.group, p, g.ucs);
+    double t;
     if (has(effects_, "envelope_curvature"))
     {
       const double mi = value("m_i", p, 10.0);
@@ -150,11 +156,12 @@ namespace coupling::diagnose
         q *= sph::rock::rate_strength_factor(d.strain_rate, reference_rate, value("rate_A", p, 0));
       return d.sigma3 + q;
     }
-    const GroupBase &g   = groups_[group_index(d.group)];
-    const double     q   = d.force * 1e3 / d.area; // MPa
-    double           eps = q / g.E;
+    const GroupBase &g = groups_[group_index(d.group)];
+    const double q     = d.force * 1e3 / d.area; // MPa
+    double eps         = q / g.E;
     if (has(effects_, "crack_closure"))
-      eps = closure_axial_strain(q, d.sigma3, g.E, value("E0_ratio", p, 1), value("sigma_cc", p, 1));
+      eps =
+        closure_axial_strain(q, d.sigma3, g.E, value("E0_ratio", p, 1), value("sigma_cc", p, 1));
     double disp = eps * d.length;
     if (d.platen && has(effects_, "machine_compliance"))
       disp += d.force / value("k_machine", p, 1e300);
@@ -167,10 +174,10 @@ namespace coupling::diagnose
   {
     struct FitContext
     {
-      const Surrogate                           *model;
-      const std::vector<Datum>                  *data;
-      std::vector<double>                        sd;
-      int                                        n_evaluations = 0;
+      const Surrogate *model;
+      const std::vector<Datum> *data;
+      std::vector<double> sd;
+      int n_evaluations = 0;
     };
 
     double to_physical(const Parameter &q, const double x)
@@ -204,10 +211,10 @@ namespace coupling::diagnose
 
     PetscErrorCode tao_residual(Tao, Vec X, Vec F, void *ctx)
     {
-      auto              &c = *static_cast<FitContext *>(ctx);
+      auto &c = *static_cast<FitContext *>(ctx);
       const PetscScalar *x;
-      PetscScalar       *f;
-      PetscInt           n;
+      PetscScalar *f;
+      PetscInt n;
       PetscCall(VecGetLocalSize(X, &n));
       PetscCall(VecGetArrayRead(X, &x));
       std::vector<double> xi(x, x + n);
@@ -242,8 +249,8 @@ namespace coupling::diagnose
     {
       const PetscInt n = static_cast<PetscInt>(x0.size());
       const PetscInt m = static_cast<PetscInt>(c.data->size());
-      Vec            X, F, LB, UB;
-      Tao            tao;
+      Vec X, F, LB, UB;
+      Tao tao;
       petsc_check(VecCreateSeq(PETSC_COMM_SELF, n, &X), "VecCreateSeq");
       petsc_check(VecCreateSeq(PETSC_COMM_SELF, m, &F), "VecCreateSeq");
       petsc_check(VecDuplicate(X, &LB), "VecDuplicate");
@@ -261,13 +268,15 @@ namespace coupling::diagnose
       petsc_check(TaoSetResidualRoutine(tao, F, tao_residual, &c), "TaoSetResidualRoutine");
       petsc_check(TaoSetVariableBounds(tao, LB, UB), "TaoSetVariableBounds");
       petsc_check(TaoSetTolerances(tao, 1e-10, 1e-10, 1e-10), "TaoSetTolerances");
-      petsc_check(TaoSetMaximumFunctionEvaluations(tao, 300 + 60 * n), "TaoSetMaximumFunctionEvaluations");
+      petsc_check(TaoSetMaximumFunctionEvaluations(tao, 300 + 60 * n),
+                  "TaoSetMaximumFunctionEvaluations");
       petsc_check(TaoSetMaximumIterations(tao, 400 + 60 * n), "TaoSetMaximumIterations");
-      petsc_check(PetscOptionsSetValue(nullptr, "-tao_pounders_delta", "0.05"), "PetscOptionsSetValue");
+      petsc_check(PetscOptionsSetValue(nullptr, "-tao_pounders_delta", "0.05"),
+                  "PetscOptionsSetValue");
       petsc_check(TaoSetFromOptions(tao), "TaoSetFromOptions");
       petsc_check(TaoSolve(tao), "TaoSolve");
       std::vector<double> xs(n);
-      const PetscScalar  *xr;
+      const PetscScalar *xr;
       petsc_check(VecGetArrayRead(X, &xr), "VecGetArrayRead");
       for (PetscInt i = 0; i < n; ++i)
         xs[i] = std::clamp(static_cast<double>(xr[i]), 0.0, 1.0);
@@ -293,7 +302,7 @@ namespace coupling::diagnose
     FitContext c{&model, &data, {}, 0};
     for (const auto &d : data)
       c.sd.push_back(noise(d));
-    const auto &prm = model.parameters();
+    const auto &prm     = model.parameters();
     const std::size_t n = prm.size();
     FitResult result;
     if (n == 0)
@@ -345,9 +354,9 @@ namespace coupling::diagnose
       for (std::size_t j = 0; j < m; ++j)
         J(j, i) = (rp[j] - rm[j]) / (2 * h);
     }
-    const Eigen::MatrixXd JtJ   = J.transpose() * J;
-    const Eigen::MatrixXd cov   = JtJ.completeOrthogonalDecomposition().pseudoInverse();
-    const double          scale = m > n ? std::max(1.0, best / static_cast<double>(m - n)) : 1.0;
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::MatrixXd cov = JtJ.completeOrthogonalDecomposition().pseudoInverse();
+    const double scale        = m > n ? std::max(1.0, best / static_cast<double>(m - n)) : 1.0;
     for (std::size_t i = 0; i < n; ++i)
       result.standard_errors.push_back(std::sqrt(std::max(cov(i, i), 0.0) * scale));
     return result;

@@ -26,16 +26,16 @@ namespace coupling::diagnose
       curve_point, ///< displacement at a force on a pre-peak curve [mm]
     } kind = strength;
     std::string test, group;
-    double sigma3 = 0;       ///< confinement [MPa] (BTS: the measured -BTS, unused)
-    double measured = 0;     ///< sigma1 [MPa] / BTS [MPa] (positive) / displacement [mm]
-    double force = 0;        ///< curve point: deviatoric force [kN]
-    double area = 0;         ///< cross-section [mm^2] (BTS: D t)
-    double length = 0;       ///< specimen length [mm] (curve points)
-    double slenderness = 2;  ///< L/D [-] (strength rows: standard 2)
-    double volume_ratio = 1; ///< specimen volume / a 50x100 mm cylinder's [-]
-    double strain_rate = 0;  ///< [1/s]; 0: unknown (strength rows)
-    bool platen = true;      ///< curve displacement read at the platen
-    int source = 0;          ///< index of the row / curve it came from (held-out folds)
+    double sigma3       = 0;    ///< confinement [MPa] (BTS: the measured -BTS, unused)
+    double measured     = 0;    ///< sigma1 [MPa] / BTS [MPa] (positive) / displacement [mm]
+    double force        = 0;    ///< curve point: deviatoric force [kN]
+    double area         = 0;    ///< cross-section [mm^2] (BTS: D t)
+    double length       = 0;    ///< specimen length [mm] (curve points)
+    double slenderness  = 2;    ///< L/D [-] (strength rows: standard 2)
+    double volume_ratio = 1;    ///< specimen volume / a 50x100 mm cylinder's [-]
+    double strain_rate  = 0;    ///< [1/s]; 0: unknown (strength rows)
+    bool platen         = true; ///< curve displacement read at the platen
+    int source          = 0;    ///< index of the row / curve it came from (held-out folds)
     std::string where;
   };
 
@@ -44,7 +44,7 @@ namespace coupling::diagnose
   {
     std::string name, unit;
     double lo = 0, hi = 1, init = 0;
-    bool log = true;
+    bool log   = true;
     double off = 0; ///< the value at which the effect vanishes (for "at its bound" checks)
   };
 
@@ -89,20 +89,21 @@ namespace coupling::diagnose
   struct FitResult
   {
     std::vector<double> values, standard_errors;
-    double chi2 = 0;   ///< sum of (residual / noise)^2 [-]
+    double chi2       = 0; ///< sum of (residual / noise)^2 [-]
     int n_evaluations = 0;
   };
 
   /// Least squares of (predict - measured)/noise over `data` with PETSc TAO (POUNDERS, bounded),
-  /// from each start in `starts` (the best is kept). `noise(d)` is the standard deviation of a datum.
+  /// from each start in `starts` (the best is kept). `noise(d)` is the standard deviation of a
+  /// datum.
   FitResult fit(const Surrogate &model, const std::vector<Datum> &data,
                 const std::function<double(const Datum &)> &noise,
                 const std::vector<std::vector<double>> &starts);
 
   /// Peak stress [MPa] of one coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens)
   /// with `rock` at particle spacing `spacing` [m].
-  double coupled_peak_stress(const std::string &test, double s3_MPa, const coupling::RockParameters &rock,
-                             double spacing);
+  double coupled_peak_stress(const std::string &test, double s3_MPa,
+                             const coupling::RockParameters &rock, double spacing);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

@@ -28,7 +28,10 @@ namespace
     return d;
   }
 
-  void write(const std::string &path, const std::string &text) { std::ofstream(path) << text; }
+  void write(const std::string &path, const std::string &text)
+  {
+    std::ofstream(path) << text;
+  }
 
   std::string error_of(const std::string &dir)
   {
@@ -46,7 +49,7 @@ namespace
   /// True when the rock model leaves `s` (principal, tension +) unchanged under a zero increment.
   bool admissible(const sph::rock::Principal &s, const sph::MaterialParameters &m)
   {
-    const auto p = sph::rock::make_rock_parameters(m);
+    const auto p   = sph::rock::make_rock_parameters(m);
     sph::Tensor3 S = sph::Tensor3::Zero();
     for (int i = 0; i < 3; ++i)
       S(i, i) = s[i];
@@ -61,11 +64,14 @@ namespace
 TEST(DiagnoseData, ReadsAFolder)
 {
   const auto d = folder("good");
-  write(d + "/material.csv", "group,E_GPa,nu,density_kg_m3,UCS_MPa,BTS_MPa,c_MPa,phi_deg\nA,60,0.25,,150,10,,\n");
-  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nBTS,A,0,-10\nCTCS,A,300,20\n");
+  write(d + "/material.csv",
+        "group,E_GPa,nu,density_kg_m3,UCS_MPa,BTS_MPa,c_MPa,phi_deg\nA,60,0.25,,150,10,,\n");
+  write(d + "/strength.csv",
+        "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nBTS,A,0,-10\nCTCS,A,300,20\n");
   fs::create_directories(d + "/curves");
-  write(d + "/curves/x.csv", "# test: UCS\n# group: A\n# diameter_mm: 50\n# length_mm: 100\n# displacement: platen\n"
-                             "time_s,displacement_mm,force_kN\n0,0,0\n1,0.1,50\n2,0.2,100\n3,0.3,150\n4,0.31,120\n");
+  write(d + "/curves/x.csv",
+        "# test: UCS\n# group: A\n# diameter_mm: 50\n# length_mm: 100\n# displacement: platen\n"
+        "time_s,displacement_mm,force_kN\n0,0,0\n1,0.1,50\n2,0.2,100\n3,0.3,150\n4,0.31,120\n");
   const Data data = read_data(d);
   ASSERT_EQ(data.materials.size(), 1u);
   EXPECT_FALSE(data.materials[0].c_MPa.has_value());
@@ -89,8 +95,9 @@ TEST(DiagnoseData, BadRowsNameFileAndLine)
   EXPECT_NE(error_of(d).find("material.csv:2"), std::string::npos) << error_of(d);
   d = folder("bad4");
   fs::create_directories(d + "/curves");
-  write(d + "/curves/x.csv", "# test: UCS\n# group: A\n# diameter_mm: 50\n# length_mm: 100\n# displacement: frame\n"
-                             "time_s,displacement_mm,force_kN\n0,0,0\n");
+  write(d + "/curves/x.csv",
+        "# test: UCS\n# group: A\n# diameter_mm: 50\n# length_mm: 100\n# displacement: frame\n"
+        "time_s,displacement_mm,force_kN\n0,0,0\n");
   EXPECT_NE(error_of(d).find("displacement"), std::string::npos) << error_of(d);
   d = folder("empty");
   EXPECT_NE(error_of(d).find("no material.csv"), std::string::npos) << error_of(d);
@@ -111,9 +118,10 @@ TEST(DiagnoseSurrogate, EnvelopesLieOnTheRockModelsSurfaces)
     std::vector<double> p = s.initial();
     sph::MaterialParameters m;
     const double sphi = std::sin(40.0 * M_PI / 180), cphi = std::cos(40.0 * M_PI / 180);
-    m.model          = effect == "tension_cutoff" ? sph::RockModel::mohr_coulomb_cutoff : sph::RockModel::mohr_coulomb;
-    m.cohesion       = 150e6 * (1 - sphi) / (2 * cphi);
-    m.friction_angle = 40.0 * M_PI / 180;
+    m.model            = effect == "tension_cutoff" ? sph::RockModel::mohr_coulomb_cutoff
+                                                    : sph::RockModel::mohr_coulomb;
+    m.cohesion         = 150e6 * (1 - sphi) / (2 * cphi);
+    m.friction_angle   = 40.0 * M_PI / 180;
     m.tensile_strength = effect == "tension_cutoff" ? 0.04 * 150e6 : 0;
     if (effect == "envelope_curvature")
     {
@@ -133,20 +141,23 @@ TEST(DiagnoseSurrogate, EnvelopesLieOnTheRockModelsSurfaces)
     }
     const double T = s.tensile_strength("A", p);
     for (double f : {0.999, 1.001})
-      EXPECT_EQ(admissible(sph::rock::Principal(T * f * 1e6, 0, 0), m), f < 1) << effect << " tension f " << f;
+      EXPECT_EQ(admissible(sph::rock::Principal(T * f * 1e6, 0, 0), m), f < 1)
+        << effect << " tension f " << f;
   }
 }
 
 TEST(RockExtensions, CrackClosureStrainIsTheIntegralOfTheTangentCompliance)
 {
   const double E = 60e9, E0 = 20e9, scc = 15e6;
-  double eps = 0;
+  double eps  = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i)
   {
     const double a = 5e6 + 100e6 * i / n, b = 5e6 + 100e6 * (i + 1) / n;
-    eps += 0.5 * (1 / sph::rock::crack_closure_tangent_modulus(a, E, E0, scc) +
-                  1 / sph::rock::crack_closure_tangent_modulus(b, E, E0, scc)) * (b - a);
+    eps += 0.5 *
+           (1 / sph::rock::crack_closure_tangent_modulus(a, E, E0, scc) +
+            1 / sph::rock::crack_closure_tangent_modulus(b, E, E0, scc)) *
+           (b - a);
   }
   // trapezoidal error ~ (h^2/12) max|f''| * range: below 1e-8 relative at n = 20000
   EXPECT_NEAR(sph::rock::crack_closure_strain(5e6, 105e6, E, E0, scc), eps, 1e-8 * eps);
@@ -173,7 +184,8 @@ TEST(RockExtensions, WeibullWeakestLinkAndScatter)
     }
     return s / 20000;
   };
-  EXPECT_NEAR(weakest_mean(80) / weakest_mean(10), sph::rock::weakest_link_strength_factor(8.0, m), 0.02);
+  EXPECT_NEAR(weakest_mean(80) / weakest_mean(10), sph::rock::weakest_link_strength_factor(8.0, m),
+              0.02);
   double s = 0, s2 = 0;
   for (int k = 0; k < 20000; ++k)
   {

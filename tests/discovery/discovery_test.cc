@@ -25,7 +25,8 @@ namespace
 
   Diagnosis run(const discovery::Truth &t, unsigned seed, const std::string &name)
   {
-    const std::string dir = std::string(COSIM_BINARY_DIR) + "/discovery-data/" + name + "-" + std::to_string(seed);
+    const std::string dir =
+      std::string(COSIM_BINARY_DIR) + "/discovery-data/" + name + "-" + std::to_string(seed);
     discovery::write_folder(t, dir, seed, true);
     return diagnose(read_data(dir), Options{});
   }
@@ -60,7 +61,8 @@ TEST(Discovery, PlainMohrCoulombIsNone)
   for (unsigned seed : seeds)
   {
     const auto d = run(base(seed), seed, "none");
-    EXPECT_EQ(d.identified, std::vector<std::string>{"none"}) << "seed " << seed << ": " << d.identified.front();
+    EXPECT_EQ(d.identified, std::vector<std::string>{"none"})
+      << "seed " << seed << ": " << d.identified.front();
   }
 }
 
@@ -68,11 +70,11 @@ TEST(Discovery, TensionCutoff)
 {
   for (unsigned seed : seeds)
   {
-    auto t = base(seed);
+    auto t            = base(seed);
     const double T_mc = discovery::true_tensile(t);
-    t.effects = {"tension_cutoff"};
-    t.T0      = uniform(seed + 200, 0.35, 0.6) * T_mc;
-    const auto d = run(t, seed, "cutoff");
+    t.effects         = {"tension_cutoff"};
+    t.T0              = uniform(seed + 200, 0.35, 0.6) * T_mc;
+    const auto d      = run(t, seed, "cutoff");
     EXPECT_EQ(d.identified, std::vector<std::string>{"tension_cutoff"}) << "seed " << seed;
     EXPECT_NEAR(parameter(d, "T0_A"), t.T0, 0.1 * t.T0) << "seed " << seed;
     EXPECT_GE(d.heldout_gain, 5.0) << "seed " << seed;
@@ -83,10 +85,10 @@ TEST(Discovery, EnvelopeCurvature)
 {
   for (unsigned seed : seeds)
   {
-    auto t      = base(seed);
-    t.effects   = {"envelope_curvature"};
-    t.sigma_ci  = uniform(seed + 300, 100, 200);
-    t.m_i       = uniform(seed + 400, 10, 25);
+    auto t       = base(seed);
+    t.effects    = {"envelope_curvature"};
+    t.sigma_ci   = uniform(seed + 300, 100, 200);
+    t.m_i        = uniform(seed + 400, 10, 25);
     const auto d = run(t, seed, "curvature");
     EXPECT_EQ(d.identified.front(), "envelope_curvature") << "seed " << seed;
     EXPECT_NEAR(parameter(d, "m_i"), t.m_i, 0.1 * t.m_i) << "seed " << seed;
@@ -98,9 +100,9 @@ TEST(Discovery, MachineCompliance)
 {
   for (unsigned seed : seeds)
   {
-    auto t      = base(seed);
-    t.effects   = {"machine_compliance"};
-    t.k_machine = uniform(seed + 500, 200, 800);
+    auto t       = base(seed);
+    t.effects    = {"machine_compliance"};
+    t.k_machine  = uniform(seed + 500, 200, 800);
     const auto d = run(t, seed, "compliance");
     EXPECT_EQ(d.identified, std::vector<std::string>{"machine_compliance"}) << "seed " << seed;
     EXPECT_NEAR(parameter(d, "k_machine"), t.k_machine, 0.1 * t.k_machine) << "seed " << seed;
@@ -112,10 +114,10 @@ TEST(Discovery, CrackClosure)
 {
   for (unsigned seed : seeds)
   {
-    auto t     = base(seed);
-    t.effects  = {"crack_closure"};
-    t.E0_ratio = uniform(seed + 600, 0.3, 0.5);
-    t.sigma_cc = uniform(seed + 700, 10, 30);
+    auto t       = base(seed);
+    t.effects    = {"crack_closure"};
+    t.E0_ratio   = uniform(seed + 600, 0.3, 0.5);
+    t.sigma_cc   = uniform(seed + 700, 10, 30);
     const auto d = run(t, seed, "closure");
     EXPECT_EQ(d.identified, std::vector<std::string>{"crack_closure"}) << "seed " << seed;
     EXPECT_NEAR(parameter(d, "E0_ratio"), t.E0_ratio, 0.1 * t.E0_ratio) << "seed " << seed;
@@ -128,9 +130,9 @@ TEST(Discovery, LoadingRate)
 {
   for (unsigned seed : seeds)
   {
-    auto t    = base(seed);
-    t.effects = {"loading_rate"};
-    t.rate_A  = uniform(seed + 800, 0.04, 0.08);
+    auto t       = base(seed);
+    t.effects    = {"loading_rate"};
+    t.rate_A     = uniform(seed + 800, 0.04, 0.08);
     const auto d = run(t, seed, "rate");
     EXPECT_EQ(d.identified, std::vector<std::string>{"loading_rate"}) << "seed " << seed;
     EXPECT_NEAR(parameter(d, "rate_A"), t.rate_A, 0.1 * t.rate_A) << "seed " << seed;
@@ -141,12 +143,12 @@ TEST(Discovery, TwoEffectsCutoffAndCompliance)
 {
   for (unsigned seed : seeds)
   {
-    auto t = base(seed);
+    auto t            = base(seed);
     const double T_mc = discovery::true_tensile(t);
-    t.effects   = {"tension_cutoff", "machine_compliance"};
-    t.T0        = uniform(seed + 200, 0.35, 0.6) * T_mc;
-    t.k_machine = uniform(seed + 500, 200, 800);
-    const auto d = run(t, seed, "two");
+    t.effects         = {"tension_cutoff", "machine_compliance"};
+    t.T0              = uniform(seed + 200, 0.35, 0.6) * T_mc;
+    t.k_machine       = uniform(seed + 500, 200, 800);
+    const auto d      = run(t, seed, "two");
     EXPECT_EQ(d.identified.size(), 2u) << "seed " << seed;
     EXPECT_TRUE(named(d, "tension_cutoff")) << "seed " << seed;
     EXPECT_TRUE(named(d, "machine_compliance")) << "seed " << seed;

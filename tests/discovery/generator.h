@@ -19,18 +19,21 @@ namespace discovery
   struct Truth
   {
     std::set<std::string> effects;
-    double c = 30, phi = 45;          ///< Mohr-Coulomb [MPa, deg]
-    double E = 60e3;                  ///< [MPa]
-    double T0 = 0;                    ///< tension cut-off [MPa]
-    double sigma_ci = 0, m_i = 0;     ///< Hoek-Brown (s = 1, a = 1/2) [MPa, -]
-    double k_machine = 0;             ///< frame stiffness [kN/mm]
+    double c = 30, phi = 45;           ///< Mohr-Coulomb [MPa, deg]
+    double E        = 60e3;            ///< [MPa]
+    double T0       = 0;               ///< tension cut-off [MPa]
+    double sigma_ci = 0, m_i = 0;      ///< Hoek-Brown (s = 1, a = 1/2) [MPa, -]
+    double k_machine = 0;              ///< frame stiffness [kN/mm]
     double E0_ratio = 1, sigma_cc = 1; ///< crack closure [-, MPa]
-    double rate_A = 0;                ///< strength gain per decade of strain rate [-]
-    double strength_scatter = 0.02;   ///< relative SD of replicate strengths [-]
-    double curve_noise = 0.002;       ///< displacement noise / peak displacement [-]
+    double rate_A           = 0;       ///< strength gain per decade of strain rate [-]
+    double strength_scatter = 0.02;    ///< relative SD of replicate strengths [-]
+    double curve_noise      = 0.002;   ///< displacement noise / peak displacement [-]
   };
 
-  inline double deg(double d) { return d * 3.14159265358979323846 / 180.0; }
+  inline double deg(double d)
+  {
+    return d * 3.14159265358979323846 / 180.0;
+  }
 
   /// Compressive strength sigma1 at confinement s3 [MPa].
   inline double true_sigma1(const Truth &t, double s3)
@@ -52,7 +55,8 @@ namespace discovery
       for (int i = 0; i < 200; ++i)
       {
         const double mid = 0.5 * (lo + hi);
-        ((-mid + std::sqrt(t.sigma_ci * t.sigma_ci - t.m_i * t.sigma_ci * mid)) > 0 ? lo : hi) = mid;
+        ((-mid + std::sqrt(t.sigma_ci * t.sigma_ci - t.m_i * t.sigma_ci * mid)) > 0 ? lo : hi) =
+          mid;
       }
       T = 0.5 * (lo + hi);
     }
@@ -72,8 +76,8 @@ namespace discovery
   {
     if (!t.effects.count("crack_closure"))
       return q / t.E;
-    const int n = 400;
-    double eps = 0;
+    const int n           = 400;
+    double eps            = 0;
     const auto compliance = [&](double p) {
       const double E0 = t.E0_ratio * t.E;
       return 1 / t.E + (1 / E0 - 1 / t.E) * std::exp(-p / t.sigma_cc);
@@ -106,14 +110,15 @@ namespace discovery
         s << "BTS,A,0," << -true_tensile(t) * (1 + t.strength_scatter * unit(rng)) << "\n";
       for (double s3 : {0.0, 5.0, 10.0, 20.0, 40.0})
         for (int r = 0; r < 3; ++r)
-          s << (s3 == 0 ? "UCS" : "CTCS") << ",A," << s3 + (true_sigma1(t, s3) - s3) * (1 + t.strength_scatter * unit(rng))
-            << "," << s3 << "\n";
+          s << (s3 == 0 ? "UCS" : "CTCS") << ",A,"
+            << s3 + (true_sigma1(t, s3) - s3) * (1 + t.strength_scatter * unit(rng)) << "," << s3
+            << "\n";
     }
     if (!with_curves)
       return;
     fs::create_directories(dir + "/curves");
     const double D = 50, L = 100, A = 3.14159265358979323846 * D * D / 4;
-    int k = 0;
+    int k                                        = 0;
     std::vector<std::pair<double, double>> tests = {{0, 1e-5}, {0, 1e-5}, {10, 1e-5}};
     if (t.effects.count("loading_rate"))
       tests = {{0, 1e-5}, {0, 1e-3}, {0, 1e-1}, {10, 1e-4}};
@@ -124,7 +129,7 @@ namespace discovery
         q_peak *= 1 + t.rate_A * std::log10(rate / 1e-5);
       q_peak *= 1 + t.strength_scatter * unit(rng);
       const double F_peak = q_peak * A / 1e3;
-      const auto disp_of = [&](double F) {
+      const auto disp_of  = [&](double F) {
         double d = true_strain(t, F * 1e3 / A, s3) * L;
         if (t.effects.count("machine_compliance"))
           d += F / t.k_machine;
@@ -134,9 +139,10 @@ namespace discovery
       // the frame moves at constant platen speed v = rate L; time follows from the displacement
       const double v = rate * L;
       std::ofstream c(dir + "/curves/c" + std::to_string(k++) + ".csv");
-      c << "# test: " << (s3 > 0 ? "CTCS" : "UCS") << "\n# group: A\n# diameter_mm: " << D << "\n# length_mm: " << L
-        << "\n# confining_MPa: " << s3 << "\n# displacement: platen\ntime_s,displacement_mm,force_kN\n";
-      const int n = 120;
+      c << "# test: " << (s3 > 0 ? "CTCS" : "UCS") << "\n# group: A\n# diameter_mm: " << D
+        << "\n# length_mm: " << L << "\n# confining_MPa: " << s3
+        << "\n# displacement: platen\ntime_s,displacement_mm,force_kN\n";
+      const int n   = 120;
       double t_last = -1;
       for (int i = 0; i <= n; ++i)
       {

@@ -24,7 +24,7 @@ namespace coupling::diagnose
   /// One row of strength.csv: a specimen at failure, compression-positive principal stresses.
   struct StrengthRow
   {
-    std::string test;  ///< UCS, BTS, CTCS or TXE
+    std::string test; ///< UCS, BTS, CTCS or TXE
     std::string group;
     double sigma1 = 0; ///< [MPa]
     double sigma3 = 0; ///< [MPa]; BTS: -BTS
@@ -36,11 +36,11 @@ namespace coupling::diagnose
   struct Curve
   {
     std::string file;
-    std::string test;                ///< UCS, CTCS or BTS
+    std::string test; ///< UCS, CTCS or BTS
     std::string group;
-    double diameter = 0;             ///< [mm]
-    double length = 0;               ///< UCS/CTCS length or BTS thickness [mm]
-    double confining = 0;            ///< [MPa]
+    double diameter          = 0;    ///< [mm]
+    double length            = 0;    ///< UCS/CTCS length or BTS thickness [mm]
+    double confining         = 0;    ///< [MPa]
     bool platen_displacement = true; ///< displacement read at the platen (else on the specimen)
     std::vector<double> time, displacement, force; ///< [s], [mm], [kN]
   };
@@ -63,9 +63,9 @@ namespace coupling::diagnose
   /// Options of one study.
   struct Options
   {
-    double bic_threshold = 10;      ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
-    double coupled_spacing = 0;     ///< > 0: check baseline/extended with run_case at this dx [m]
-    bool verbose = false;
+    double bic_threshold   = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
+    double coupled_spacing = 0;  ///< > 0: check baseline/extended with run_case at this dx [m]
+    bool verbose           = false;
   };
 
   /// A fitted parameter with its standard error (from the Jacobian at the optimum).
@@ -79,13 +79,13 @@ namespace coupling::diagnose
   struct Candidate
   {
     std::string name;
-    bool applicable = true;          ///< false when the data cannot inform it (reason says why)
+    bool applicable = true; ///< false when the data cannot inform it (reason says why)
     std::string reason;
     std::vector<FittedValue> parameters;
-    double delta_bic = 0;            ///< BIC(baseline refit) - BIC(candidate); > 0 favours it
-    double delta_bic_baseline = 0;   ///< BIC(baseline) - BIC(candidate)
-    double error_before = 0;         ///< baseline RMS normalised error on all data [-]
-    double error_after = 0;          ///< this candidate's [-]
+    double delta_bic          = 0; ///< BIC(baseline refit) - BIC(candidate); > 0 favours it
+    double delta_bic_baseline = 0; ///< BIC(baseline) - BIC(candidate)
+    double error_before       = 0; ///< baseline RMS normalised error on all data [-]
+    double error_after        = 0; ///< this candidate's [-]
     double heldout_before = 0, heldout_after = 0; ///< leave-one-out RMS normalised error [-]
   };
 
@@ -93,7 +93,7 @@ namespace coupling::diagnose
   struct ModelError
   {
     std::string model;
-    double fit = 0, heldout = 0;            ///< RMS normalised residual [-]
+    double fit = 0, heldout = 0; ///< RMS normalised residual [-]
     double strength_rms_MPa = 0, heldout_strength_rms_MPa = 0;
     double curve_rms_mm = 0, heldout_curve_rms_mm = 0;
     std::map<std::string, double> coupled; ///< coupled-simulator errors, when run
@@ -110,11 +110,12 @@ namespace coupling::diagnose
     ModelError baseline, extended;
     double gain = 1, heldout_gain = 1;
     std::vector<FittedValue> extended_parameters;
-    std::map<std::string, double> noise;          ///< per data kind, what it came from in notes
+    std::map<std::string, double> noise; ///< per data kind, what it came from in notes
     std::vector<std::string> notes;
     int n_strength = 0, n_curve_points = 0;
     std::string envelope_table; ///< CSV: group,sigma3_MPa,baseline_sigma1_MPa,extended_sigma1_MPa
-    std::string points_table;   ///< CSV: kind,source,group,test,sigma3_MPa,force_kN,measured,baseline,extended
+    std::string
+      points_table; ///< CSV: kind,source,group,test,sigma3_MPa,force_kN,measured,baseline,extended
   };
 
   /// Runs the study.
