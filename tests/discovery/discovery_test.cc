@@ -157,3 +157,29 @@ TEST(Discovery, TwoEffectsCutoffAndCompliance)
     EXPECT_GE(d.heldout_gain, 5.0) << "seed " << seed;
   }
 }
+
+TEST(Discovery, EndFriction)
+{
+  for (unsigned seed : seeds)
+  {
+    auto t       = base(seed);
+    t.effects    = {"end_friction"};
+    t.mu         = uniform(seed + 900, 0.2, 0.5);
+    const auto d = run(t, seed, "friction");
+    EXPECT_EQ(d.identified, std::vector<std::string>{"end_friction"}) << "seed " << seed;
+    EXPECT_NEAR(parameter(d, "mu"), t.mu, 0.1 * t.mu) << "seed " << seed;
+  }
+}
+
+TEST(Discovery, Heterogeneity)
+{
+  for (unsigned seed : seeds)
+  {
+    auto t       = base(seed);
+    t.effects    = {"heterogeneity"};
+    t.weibull_m  = uniform(seed + 1000, 6, 12);
+    const auto d = run(t, seed, "heterogeneity");
+    EXPECT_EQ(d.identified, std::vector<std::string>{"heterogeneity"}) << "seed " << seed;
+    EXPECT_NEAR(parameter(d, "weibull_m"), t.weibull_m, 0.1 * t.weibull_m) << "seed " << seed;
+  }
+}

@@ -5,6 +5,7 @@
 /// written apart from coupling/src/diagnose*: no shared code path (its own envelope formulas, a
 /// bisection for the Hoek-Brown tensile strength, a numerical integration of the toe compliance).
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,8 @@ namespace discovery
     double k_machine = 0;              ///< frame stiffness [kN/mm]
     double E0_ratio = 1, sigma_cc = 1; ///< crack closure [-, MPa]
     double rate_A           = 0;       ///< strength gain per decade of strain rate [-]
+    double mu               = 0;       ///< platen friction: apparent strength 1 + mu D / (3 L) [-]
+    double weibull_m        = 0;       ///< size effect: strength ~ (volume / 50x100 mm)^(-1/m) [-]
     double strength_scatter = 0.02;    ///< relative SD of replicate strengths [-]
     double curve_noise      = 0.002;   ///< displacement noise / peak displacement [-]
   };
@@ -111,20 +114,32 @@ namespace discovery
       for (double s3 : {0.0, 5.0, 10.0, 20.0, 40.0})
         for (int r = 0; r < 3; ++r)
           s << (s3 == 0 ? "UCS" : "CTCS") << ",A,"
-            << s3 + (true_sigma1(t, s3) - s3) * (1 + t.strength_scatter * unit(rng)) << "," << s3
-            << "\n";
+            << s3 + (true_sigma1(t, s3) - s3) *
+                      (t.effects.count("end_friction") ? 1 + t.mu / 6 : 1.0) *
+                      (1 + t.strength_scatter * unit(rng))
+            << "," << s3 << "\n"; // rows: standard 50 x 100 mm specimens (L/D = 2)
     }
     if (!with_curves)
       return;
     fs::create_directories(dir + "/curves");
-    const double D = 50, L = 100, A = 3.14159265358979323846 * D * D / 4;
-    int k                                        = 0;
-    std::vector<std::pair<double, double>> tests = {{0, 1e-5}, {0, 1e-5}, {10, 1e-5}};
+    int k = 0;
+    // (confinement, strain rate, diameter, length)
+    std::vector<std::array<double, 4>> tests = {
+      {0, 1e-5, 50, 100}, {0, 1e-5, 50, 100}, {10, 1e-5, 50, 100}};
     if (t.effects.count("loading_rate"))
-      tests = {{0, 1e-5}, {0, 1e-3}, {0, 1e-1}, {10, 1e-4}};
-    for (auto [s3, rate] : tests)
+      tests = {{0, 1e-5, 50, 100}, {0, 1e-3, 50, 100}, {0, 1e-1, 50, 100}, {10, 1e-4, 50, 100}};
+    if (t.effects.count("end_friction"))
+      tests = {{0, 1e-5, 50, 100}, {0, 1e-5, 50, 50}, {0, 1e-5, 50, 25}, {10, 1e-5, 50, 50}};
+    if (t.effects.count("heterogeneity"))
+      tests = {{0, 1e-5, 25, 50}, {0, 1e-5, 50, 100}, {0, 1e-5, 100, 200}, {10, 1e-5, 50, 100}};
+    for (auto [s3, rate, D, L] : tests)
     {
-      double q_peak = true_sigma1(t, s3) - s3;
+      const double A = 3.14159265358979323846 * D * D / 4;
+      double q_peak  = true_sigma1(t, s3) - s3;
+      if (t.effects.count("end_friction"))
+        q_peak *= 1 + t.mu * D / (3 * L);
+      if (t.effects.count("heterogeneity"))
+        q_peak *= std::pow(D * D * L / (50.0 * 50.0 * 100.0), -1 / t.weibull_m);
       if (t.effects.count("loading_rate"))
         q_peak *= 1 + t.rate_A * std::log10(rate / 1e-5);
       q_peak *= 1 + t.strength_scatter * unit(rng);
