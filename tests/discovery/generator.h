@@ -128,8 +128,9 @@ namespace discovery
       {0, 1e-5, 50, 100}, {0, 1e-5, 50, 100}, {10, 1e-5, 50, 100}};
     if (t.effects.count("loading_rate"))
       tests = {{0, 1e-5, 50, 100}, {0, 1e-3, 50, 100}, {0, 1e-1, 50, 100}, {10, 1e-4, 50, 100}};
-    if (t.effects.count("end_friction"))
-      tests = {{0, 1e-5, 50, 100}, {0, 1e-5, 50, 50}, {0, 1e-5, 50, 25}, {10, 1e-5, 50, 50}};
+    if (t.effects.count("end_friction")) // L/D = 2, 1, 1/2 at one volume (no size effect mixed in)
+      tests = {{0, 1e-5, 50, 100},    {0, 1e-5, 63.0, 63.0},   {0, 1e-5, 63.0, 63.0},
+               {0, 1e-5, 79.37, 39.69}, {0, 1e-5, 79.37, 39.69}, {0, 1e-5, 79.37, 39.69}};
     if (t.effects.count("heterogeneity"))
       tests = {{0, 1e-5, 25, 50}, {0, 1e-5, 50, 100}, {0, 1e-5, 100, 200}, {10, 1e-5, 50, 100}};
     for (auto [s3, rate, D, L] : tests)
