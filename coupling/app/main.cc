@@ -7,6 +7,7 @@
 // culprit and what is accepted), 3 unstable run.
 #include <coupling/calibrate.h>
 #include <coupling/cli.h>
+#include <coupling/diagnose.h>
 #include <coupling/run_case.h>
 #include <coupling/run_command.h>
 #include <coupling/study.h>
@@ -33,6 +34,8 @@ namespace
      &coupling::calibrate_main},
     {"study", "sweep parameters / rock groups over one case: study.csv and study.png", &coupling::study_help,
      &coupling::study_main},
+    {"diagnose", "what the simulation gets wrong on measured data, the cause and the gain",
+     &coupling::diagnose::diagnose_help, &coupling::diagnose::diagnose_main},
   };
 
   std::vector<std::string> command_names()

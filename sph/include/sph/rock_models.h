@@ -391,4 +391,55 @@ namespace sph::rock
     const Tensor3 dev  = s - mean * Tensor3::Identity();
     return 0.5 * (dev.squaredNorm() / (2.0 * p.G) + mean * mean / p.K);
   }
+
+  // ---- Extensions used by `cosim diagnose` (pure functions; stresses compression-positive here,
+  // ---- as the closure and strength laws are written in the rock-mechanics literature).
+
+  /// Crack-closure (toe) elasticity: tangent Young's modulus at compressive stress p normal to the
+  /// cracks [Pa], 1/E_t = 1/E + (1/E0 - 1/E) exp(-p / sigma_cc): E0 (<= E) at zero stress, the
+  /// intact E once the cracks have closed (p >> sigma_cc, the closure stress).
+  inline double crack_closure_tangent_modulus(const double p, const double E, const double E0,
+                                              const double sigma_cc)
+  {
+    return 1.0 / (1.0 / E + (1.0 / E0 - 1.0 / E) * std::exp(-std::max(p, 0.0) / sigma_cc));
+  }
+
+  /// Strain accumulated along the loading axis while the compressive stress rises from p_from to
+  /// p_to (>= 0) under crack_closure_tangent_modulus: the closed-form integral of 1/E_t [-].
+  inline double crack_closure_strain(const double p_from, const double p_to, const double E,
+                                     const double E0, const double sigma_cc)
+  {
+    const double a = std::max(p_from, 0.0), b = std::max(p_to, 0.0);
+    return (p_to - p_from) / E +
+           (1.0 / E0 - 1.0 / E) * sigma_cc * (std::exp(-a / sigma_cc) - std::exp(-b / sigma_cc));
+  }
+
+  /// Per-particle strength scatter: the Weibull strength factor (mean 1, modulus m) of the
+  /// particle whose uniform random number is u in [0, 1) [-].
+  inline double weibull_strength_factor(const double u, const double m)
+  {
+    return std::pow(-std::log(1.0 - u), 1.0 / m) / std::tgamma(1.0 + 1.0 / m);
+  }
+
+  /// Weakest link of Weibull-scattered particles: mean strength of a specimen of volume ratio
+  /// V / V_ref relative to the reference specimen's, (V / V_ref)^(-1/m) [-].
+  inline double weakest_link_strength_factor(const double volume_ratio, const double m)
+  {
+    return std::pow(volume_ratio, -1.0 / m);
+  }
+
+  /// Coefficient of variation of a Weibull strength of modulus m [-].
+  inline double weibull_coefficient_of_variation(const double m)
+  {
+    const double g1 = std::tgamma(1.0 + 1.0 / m), g2 = std::tgamma(1.0 + 2.0 / m);
+    return std::sqrt(g2 / (g1 * g1) - 1.0);
+  }
+
+  /// Rate-dependent strength: factor 1 + A log10(rate / reference_rate) on the quasi-static
+  /// strength (A: strength gain per decade of strain rate), floored at 0.1 [-].
+  inline double rate_strength_factor(const double rate, const double reference_rate,
+                                     const double A)
+  {
+    return std::max(1.0 + A * std::log10(std::max(rate, 1e-300) / reference_rate), 0.1);
+  }
 } // namespace sph::rock

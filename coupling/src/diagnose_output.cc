@@ -1,0 +1,310 @@
+// `cosim diagnose` front end: options, diagnosis.json, report.md, the plot tables and the plots
+// (tools/plot_diagnosis.py).
+#include <coupling/cli.h>
+#include <coupling/csv.h>
+#include <coupling/diagnose.h>
+#include <coupling/run_case.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace coupling::diagnose
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    std::string quote(const std::string &s)
+    {
+      std::string o = "\"";
+      for (char c : s)
+      {
+        if (c == '"' || c == '\\')
+          o += '\\';
+        o += c;
+      }
+      return o + "\"";
+    }
+
+    std::string num(const double v)
+    {
+      if (!std::isfinite(v))
+        return "null";
+      std::ostringstream o;
+      o << std::setprecision(6) << v;
+      return o.str();
+    }
+
+    std::string values_json(const std::vector<FittedValue> &v, const std::string &indent)
+    {
+      std::string o = "[";
+      for (std::size_t i = 0; i < v.size(); ++i)
+        o += (i ? ",\n" : "\n") + indent + "  {\"name\": " + quote(v[i].name) +
+             ", \"unit\": " + quote(v[i].unit) + ", \"value\": " + num(v[i].value) +
+             ", \"standard_error\": " + num(v[i].standard_error) + "}";
+      return o + (v.empty() ? "]" : "\n" + indent + "]");
+    }
+
+    std::string error_json(const ModelError &e)
+    {
+      std::string o = "{\"model\": " + quote(e.model) + ", \"error_fit\": " + num(e.fit) +
+                      ", \"error_heldout\": " + num(e.heldout) +
+                      ", \"strength_rms_MPa\": " + num(e.strength_rms_MPa) +
+                      ", \"heldout_strength_rms_MPa\": " + num(e.heldout_strength_rms_MPa) +
+                      ", \"curve_rms_mm\": " + num(e.curve_rms_mm) +
+                      ", \"heldout_curve_rms_mm\": " + num(e.heldout_curve_rms_mm);
+      for (const auto &[k, v] : e.coupled)
+        o += ", " + quote("coupled_" + k) + ": " + num(v);
+      return o + "}";
+    }
+
+    std::string fmt(double v, int p = 3)
+    {
+      std::ostringstream o;
+      o << std::setprecision(p) << v;
+      return o.str();
+    }
+
+    std::string report_md(const Diagnosis &d, const std::string &data_dir)
+    {
+      std::ostringstream r;
+      std::string ids;
+      for (const auto &i : d.identified)
+        ids += (ids.empty() ? "" : ", ") + i;
+      r << "# cosim diagnose\n\nData: `" << data_dir << "` (" << d.n_strength
+        << " strengths incl. curve peaks, " << d.n_curve_points << " pre-peak curve points).\n\n";
+      r << "## Named cause: " << ids << "\n\n";
+      for (const auto &i : d.indistinguishable)
+        r << "Competing explanation the data cannot tell apart from it: `" << i
+          << "` (see the candidates table).\n\n";
+      if (d.identified.front() == "none")
+        r << "No extension earns its parameters: the baseline explains the data within their "
+             "noise.\n\n";
+      else
+      {
+        r << "Evidence (Delta BIC against the best model without the effect, > 10 = very strong; "
+             "held-out = leave one specimen out):\n\n";
+        for (const auto &c : d.candidates)
+          for (const auto &i : d.identified)
+            if (c.name == i)
+              r << "- `" << i << "`: Delta BIC " << fmt(c.delta_bic, 4) << " on its own; error "
+                << fmt(c.error_before) << " -> " << fmt(c.error_after) << " (fit), "
+                << fmt(c.heldout_before) << " -> " << fmt(c.heldout_after) << " (held-out).\n";
+        r << "\nFitted values of the extended model (" << d.extended.model
+          << "), +- one standard error:\n\n"
+          << "| parameter | value | standard error | unit |\n|---|---|---|---|\n";
+        for (const auto &v : d.extended_parameters)
+          r << "| " << v.name << " | " << fmt(v.value, 5) << " | " << fmt(v.standard_error, 3)
+            << " | " << v.unit << " |\n";
+        r << "\n";
+      }
+      r << "## Gain\n\n| model | error (fit) | error (held-out) | strength RMS fit / held-out "
+           "[MPa] | curve RMS "
+           "fit / held-out [mm] |\n|---|---|---|---|---|\n";
+      for (const auto *e : {&d.baseline, &d.extended})
+        r << "| " << e->model << " | " << fmt(e->fit) << " | " << fmt(e->heldout) << " | "
+          << fmt(e->strength_rms_MPa) << " / " << fmt(e->heldout_strength_rms_MPa) << " | "
+          << fmt(e->curve_rms_mm) << " / " << fmt(e->heldout_curve_rms_mm) << " |\n";
+      r << "\nGain (baseline error / extended error): " << fmt(d.gain) << " on the fitted data, "
+        << fmt(d.heldout_gain)
+        << " on held-out specimens. Errors are RMS residuals divided by the data noise.\n";
+      if (!d.baseline.coupled.empty())
+      {
+        r << "\nCoupled simulator (run_case, coarse spacing), peak stresses against the "
+             "measured:\n\n"
+             "| quantity | baseline | extended |\n|---|---|---|\n";
+        for (const auto &[k, v] : d.baseline.coupled)
+          r << "| " << k << " | " << fmt(v, 4) << " | "
+            << (d.extended.coupled.count(k) ? fmt(d.extended.coupled.at(k), 4) : "-") << " |\n";
+      }
+      r << "\n## Candidates\n\n| effect | applicable | Delta BIC | Delta BIC vs baseline | error "
+           "fit before -> after | "
+           "held-out before -> after | parameters | note |\n|---|---|---|---|---|---|---|---|\n";
+      for (const auto &c : d.candidates)
+      {
+        std::string prm;
+        for (const auto &v : c.parameters)
+          if (v.name.rfind("UCS_", 0) != 0 && v.name.rfind("T0_", 0) != 0)
+            prm += (prm.empty() ? "" : "; ") + v.name + " = " + fmt(v.value, 4) + " +- " +
+                   fmt(v.standard_error, 2);
+        if (!c.applicable)
+          r << "| " << c.name << " | no | | | | | | " << c.reason << " |\n";
+        else
+          r << "| " << c.name << " | yes | " << fmt(c.delta_bic, 4) << " | "
+            << fmt(c.delta_bic_baseline, 4) << " | " << fmt(c.error_before) << " -> "
+            << fmt(c.error_after) << " | " << fmt(c.heldout_before) << " -> "
+            << fmt(c.heldout_after) << " | " << prm << " | " << c.reason << " |\n";
+      }
+      r << "\n## Notes\n\n";
+      for (const auto &n : d.notes)
+        r << "- " << n << "\n";
+      r << "\nPlots: `envelope.png` (strength envelope: baseline, extended, data), `curves.png` "
+           "(measured "
+           "and modelled pre-peak curves, where there are curves).\n";
+      return r.str();
+    }
+
+    void write(const fs::path &p, const std::string &text)
+    {
+      std::ofstream o(p);
+      o << text;
+      if (!o)
+        throw std::runtime_error("cannot write " + p.string());
+    }
+  } // namespace
+
+  std::string diagnosis_json(const Diagnosis &d)
+  {
+    std::ostringstream o;
+    o << "{\n  \"identified\": [";
+    for (std::size_t i = 0; i < d.identified.size(); ++i)
+      o << (i ? ", " : "") << quote(d.identified[i]);
+    o << "],\n  \"indistinguishable\": [";
+    for (std::size_t i = 0; i < d.indistinguishable.size(); ++i)
+      o << (i ? ", " : "") << quote(d.indistinguishable[i]);
+    o << "],\n  \"candidates\": [";
+    for (std::size_t i = 0; i < d.candidates.size(); ++i)
+    {
+      const auto &c = d.candidates[i];
+      o << (i ? "," : "") << "\n    {\"name\": " << quote(c.name)
+        << ", \"applicable\": " << (c.applicable ? "true" : "false")
+        << ", \"note\": " << quote(c.reason)
+        << ",\n     \"evidence\": {\"delta_bic\": " << num(c.delta_bic)
+        << ", \"delta_bic_vs_baseline\": " << num(c.delta_bic_baseline)
+        << "},\n     \"parameters\": " << values_json(c.parameters, "     ")
+        << ",\n     \"error_before\": " << num(c.error_before)
+        << ", \"error_after\": " << num(c.error_after)
+        << ", \"heldout_error_before\": " << num(c.heldout_before)
+        << ", \"heldout_error_after\": " << num(c.heldout_after) << "}";
+    }
+    o << "\n  ],\n  \"baseline\": " << error_json(d.baseline)
+      << ",\n  \"extended\": " << error_json(d.extended)
+      << ",\n  \"extended_parameters\": " << values_json(d.extended_parameters, "  ")
+      << ",\n  \"gain\": " << num(d.gain) << ",\n  \"heldout_gain\": " << num(d.heldout_gain)
+      << ",\n  \"noise\": {";
+    bool first = true;
+    for (const auto &[k, v] : d.noise)
+    {
+      o << (first ? "" : ", ") << quote(k) << ": " << num(v);
+      first = false;
+    }
+    o << "},\n  \"notes\": [";
+    for (std::size_t i = 0; i < d.notes.size(); ++i)
+      o << (i ? ",\n    " : "\n    ") << quote(d.notes[i]);
+    o << "\n  ]\n}\n";
+    return o.str();
+  }
+
+  std::string diagnose_help()
+  {
+    return "usage: cosim diagnose DATA_DIR [-o OUTDIR] [--force] [--bic-threshold X]\n"
+           "\n"
+           "What the simulation gets wrong on measured data, the cause, the extension and the "
+           "gain.\n"
+           "DATA_DIR holds any of material.csv, strength.csv, curves/*.csv (design.md, 'Measured "
+           "data').\n"
+           "The baseline is linear Mohr-Coulomb with the measured c, phi (or calibrated from UCS "
+           "and BTS),\n"
+           "measured E, rigid frictionless platens and the displacement read at the platen. Each "
+           "candidate\n"
+           "(tension_cutoff, envelope_curvature, crack_closure, machine_compliance, end_friction,\n"
+           "heterogeneity, loading_rate) is fitted with PETSc TAO (POUNDERS) on a material-point "
+           "surrogate\n"
+           "and judged by BIC and leave-one-specimen-out error.\n"
+           "\n"
+           "writes into OUTDIR (default results/diagnose):\n"
+           "  diagnosis.json  identified, candidates, baseline, extended, gain\n"
+           "  report.md       candidates table, named cause and evidence, fitted values, gain\n"
+           "  envelope.csv, points.csv, envelope.png, curves.png\n"
+           "\n"
+           "options:\n"
+           "  -o, --output OUTDIR  result folder; never replaced without --force\n"
+           "  --force              replace an existing OUTDIR\n"
+           "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
+           "  --coupled-spacing DX also run the coupled simulator (run_case, spacing DX [m]) on "
+           "the\n"
+           "                       datum the baseline misses most, baseline and extended rock "
+           "model\n"
+           "                       (minutes per run)\n";
+  }
+
+  int diagnose_main(const std::vector<std::string> &args)
+  {
+    std::string data_dir, out_dir = "results/diagnose";
+    bool force = false;
+    Options options;
+    for (std::size_t i = 0; i < args.size(); ++i)
+    {
+      const std::string &a = args[i];
+      const auto next      = [&]() -> std::string {
+        if (i + 1 >= args.size())
+          throw InputError("cosim diagnose: " + a + " needs a value");
+        return args[++i];
+      };
+      if (a == "-o" || a == "--output")
+        out_dir = next();
+      else if (a == "--force")
+        force = true;
+      else if (a == "--bic-threshold")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || *v < 0)
+          throw InputError("cosim diagnose: --bic-threshold takes a non-negative number");
+        options.bic_threshold = *v;
+      }
+      else if (a == "--coupled-spacing")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || !(*v > 0 && *v < 0.01))
+          throw InputError(
+            "cosim diagnose: --coupled-spacing takes a particle spacing in m, 0 < dx < 0.01");
+        options.coupled_spacing = *v;
+      }
+      else if (!a.empty() && a[0] == '-')
+        throw InputError("cosim diagnose: unknown option '" + a + "'" +
+                         did_you_mean(a, {"--output", "--force", "--bic-threshold",
+                                          "--coupled-spacing", "--help"}) +
+                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX");
+      else if (data_dir.empty())
+        data_dir = a;
+      else
+        throw InputError("cosim diagnose: one DATA_DIR only (got '" + data_dir + "' and '" + a +
+                         "')");
+    }
+    if (data_dir.empty())
+      throw InputError(
+        "cosim diagnose: give the measured-data folder: cosim diagnose DATA_DIR [-o OUTDIR]");
+    if (fs::exists(out_dir) && !force)
+      throw InputError(out_dir +
+                       " already exists; use --force to replace it, or -o to choose another");
+    const Data data   = read_data(data_dir);
+    const Diagnosis d = diagnose(data, options);
+    fs::create_directories(out_dir);
+    const fs::path out(out_dir);
+    write(out / "diagnosis.json", diagnosis_json(d));
+    write(out / "report.md", report_md(d, data_dir));
+    write(out / "envelope.csv", d.envelope_table);
+    write(out / "points.csv", d.points_table);
+    const std::string script = std::string(COSIM_SOURCE_DIR) + "/tools/plot_diagnosis.py";
+    std::string python       = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    if (const char *env = std::getenv("COSIM_PYTHON"))
+      python = env;
+    const std::string cmd = "'" + python + "' '" + script + "' '" + out.string() + "' > '" +
+                            (out / "plot.log").string() + "' 2>&1";
+    if (fs::exists(script) && std::system(cmd.c_str()) == 0)
+      fs::remove(out / "plot.log");
+    else
+      std::fprintf(stderr, "cosim diagnose: plots skipped (see %s)\n", (out / "plot.log").c_str());
+    std::string ids;
+    for (const auto &i : d.identified)
+      ids += (ids.empty() ? "" : ", ") + i;
+    std::printf("identified: %s; gain %.3g (held-out %.3g); wrote %s\n", ids.c_str(), d.gain,
+                d.heldout_gain, out_dir.c_str());
+    return 0;
+  }
+} // namespace coupling::diagnose

@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""Plots of `cosim diagnose`: envelope.png (strength envelope per group, baseline vs extended vs
+data, compression positive) and curves.png (pre-peak force-displacement points, measured vs the
+baseline and extended surrogate). Usage: plot_diagnosis.py OUTDIR (reads envelope.csv, points.csv)."""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(x):
+    return float(x) if x not in ("", None) else None
+
+
+def main():
+    out = sys.argv[1]
+    env = rows(os.path.join(out, "envelope.csv"))
+    pts = rows(os.path.join(out, "points.csv"))
+    groups = list(dict.fromkeys(r["group"] for r in env))
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for i, g in enumerate(groups):
+        c = colours[i % len(colours)]
+        er = [r for r in env if r["group"] == g]
+        b = sorted((num(r["sigma3_MPa"]), num(r["baseline_sigma1_MPa"])) for r in er if r["baseline_sigma1_MPa"])
+        e = sorted((num(r["sigma3_MPa"]), num(r["extended_sigma1_MPa"])) for r in er if r["extended_sigma1_MPa"])
+        ax.plot([p[0] for p in b], [p[1] for p in b], "--", color=c, lw=1,
+                label="baseline" if i == 0 else None)
+        ax.plot([p[0] for p in e], [p[1] for p in e], "-", color=c, lw=1.5,
+                label="extended" if i == 0 else None)
+        sp = [r for r in pts if r["group"] == g and r["kind"] == "strength"]
+        xs = [(-num(r["measured"]) if r["test"] == "BTS" else num(r["sigma3_MPa"])) for r in sp]
+        ys = [(0.0 if r["test"] == "BTS" else num(r["measured"])) for r in sp]
+        ax.plot(xs, ys, "o", color=c, ms=4, label=g if len(groups) <= 10 else None)
+    ax.set_xlabel("sigma3 [MPa] (compression +; BTS at sigma3 = -BTS)")
+    ax.set_ylabel("sigma1 at failure [MPa]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    ax.set_title("Strength envelope: baseline (dashed), extended (solid), data (dots)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "envelope.png"), dpi=120)
+    plt.close(fig)
+
+    cp = [r for r in pts if r["kind"] == "curve"]
+    if cp:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        sources = list(dict.fromkeys(r["source"] for r in cp))
+        for i, s in enumerate(sources):
+            c = colours[i % len(colours)]
+            rr = [r for r in cp if r["source"] == s]
+            f = [num(r["force_kN"]) for r in rr]
+            ax.plot([num(r["measured"]) for r in rr], f, "o", color=c, ms=3,
+                    label="measured" if i == 0 else None)
+            ax.plot([num(r["baseline"]) for r in rr], f, "--", color=c, lw=1,
+                    label="baseline" if i == 0 else None)
+            ax.plot([num(r["extended"]) for r in rr], f, "-", color=c, lw=1.5,
+                    label="extended" if i == 0 else None)
+        ax.set_xlabel("displacement [mm]")
+        ax.set_ylabel("force [kN]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title("Pre-peak curves: measured, baseline, extended")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "curves.png"), dpi=120)
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
