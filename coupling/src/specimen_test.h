@@ -57,6 +57,7 @@ namespace coupling
     void select_gauges();
     double top_velocity(double t) const;
     void step();
+    double exchange_imbalance() const;
     HistoryRow measure() const;
     void check_stability() const;
     ParticleSnapshot particle_snapshot() const;
@@ -74,6 +75,7 @@ namespace coupling
     double time_         = 0;
     std::size_t n_steps_ = 0;
     double frame_work_ = 0, pressure_work_ = 0;
+    double max_exchange_imbalance_ = 0; ///< see Summary::max_exchange_imbalance
     double domain_size_ = 0;
     // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;

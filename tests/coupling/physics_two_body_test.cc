@@ -1,0 +1,296 @@
+// Coupling checks on an SPH rock body and one FEM body (issue 5): conservation in an impact, wave
+// transmission across the steel/rock interface, and Coulomb friction onset and sliding.
+#include "two_body.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace coupling;
+using namespace coupling::testing;
+
+namespace
+{
+  constexpr double pi = 3.14159265358979323846;
+
+  // materials: basalt group M1 (Table 3) and steel
+  constexpr double rock_E = 97.07e9, rock_rho = 2900.0;
+  constexpr double steel_E = 200e9, steel_rho = 7850.0;
+
+  std::unique_ptr<fem::Platen> steel_box(double size_xy, double thickness, double element,
+                                         double poissons_ratio, bool free_body)
+  {
+    fem::PlatenGeometry g;
+    g.shape     = fem::PlatenShape::box;
+    g.size_x    = size_xy;
+    g.size_y    = size_xy;
+    g.thickness = thickness;
+    g.side      = fem::PlatenSide::below; // contact face z = 0 on top, body below
+    g.contact_z = 0.0;
+    fem::Parameters p;
+    p.youngs_modulus = steel_E;
+    p.density        = steel_rho;
+    p.poissons_ratio = poissons_ratio;
+    p.element_size   = element;
+    p.free_body      = free_body;
+    return std::make_unique<fem::Platen>(g, p);
+  }
+
+  double norm(const std::array<double, 3> &a)
+  {
+    return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  }
+} // namespace
+
+TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
+{
+  // A 12 mm rock cube at 1 m/s strikes a free 16 x 16 x 8 mm steel block (no prescribed motion,
+  // no support) and bounces off. Nothing outside acts on the pair.
+  const double dx = 2e-3, v0 = 1.0;
+  auto rock  = rock_block({-6e-3, -6e-3, 2e-5}, {6e-3, 6e-3, 12e-3 + 2e-5}, dx, rock_E, 0.28,
+                          rock_rho);
+  auto steel = steel_box(16e-3, 8e-3, 2e-3, 0.3, true);
+  for (unsigned int i = 0; i < rock->n_particles(); ++i)
+    rock->set_velocity(i, {0.0, 0.0, -v0});
+  TwoBody pair(std::move(rock), std::move(steel), 0.1);
+
+  const auto p_rock0 = pair.rock().momentum();
+  const std::array<double, 3> p0{{p_rock0[0], p_rock0[1], p_rock0[2]}};
+  const double e0 = pair.rock().energies().kinetic;
+  ASSERT_GT(e0, 0.0);
+  auto total_energy = [&] {
+    const sph::Energies e = pair.rock().energies();
+    return e.kinetic + e.internal + e.dissipated() + pair.platen().kinetic_energy() +
+           pair.platen().strain_energy() + pair.contact().penalty_energy();
+  };
+
+  double max_momentum_error = 0, max_energy_error = 0, max_exchange = 0;
+  std::size_t steps_in_contact = 0;
+  const int n_steps = 400; // about 130 us: contact and separation, ~ 40 us after first touch
+  for (int n = 0; n < n_steps; ++n)
+  {
+    pair.step();
+    if (pair.n_contact() > 0)
+    {
+      ++steps_in_contact;
+      double scale = 0;
+      for (std::size_t i = 0; i < pair.force_on_rock().size(); i += 3)
+        scale += std::hypot(pair.force_on_rock()[i], pair.force_on_rock()[i + 1],
+                            pair.force_on_rock()[i + 2]);
+      const auto a = vector_sum(pair.force_on_rock()), b = vector_sum(pair.force_on_platen());
+      max_exchange =
+        std::max(max_exchange, norm({{a[0] + b[0], a[1] + b[1], a[2] + b[2]}}) / scale);
+    }
+    const auto pr = pair.rock().momentum();
+    const auto pf = pair.platen_momentum();
+    const std::array<double, 3> dp{
+      {pr[0] + pf[0] - p0[0], pr[1] + pf[1] - p0[1], pr[2] + pf[2] - p0[2]}};
+    max_momentum_error = std::max(max_momentum_error, norm(dp) / norm(p0));
+    max_energy_error   = std::max(max_energy_error, std::abs(total_energy() - e0) / e0);
+  }
+  ASSERT_GT(steps_in_contact, 5u) << "the bodies must collide, or the test proves nothing";
+  EXPECT_EQ(pair.n_contact(), 0u) << "the rock should have bounced off by the end";
+  // the steel block took up momentum: the exchange really happened
+  EXPECT_LT(pair.platen_momentum()[2], -0.1 * norm(p0));
+  // forces cancel to round-off in every step (each pair force applied once to each side)
+  EXPECT_LT(max_exchange, 1e-12);
+  // 1e-10: internal forces of SPH (pairwise antisymmetric) and FEM (K has the rigid translations
+  // in its null space) sum to zero, the contact impulse f dt is the same on both sides with the
+  // sub-cycling, so only round-off of ~1e3 steps remains
+  EXPECT_LT(max_momentum_error, 1e-10);
+  // 2 % (the issue's tolerance): kinetic + internal + dissipated (artificial viscosity, hourglass)
+  // + FEM kinetic + strain + penalty energy. Central differences keep a shadow energy; the
+  // energies are read at staggered time levels (kinetic at half steps), which shows as an
+  // oscillation of order omega dt around the constant
+  EXPECT_LT(max_energy_error, 0.02);
+  std::cout << "[impact] steps in contact " << steps_in_contact << ", n_substeps "
+            << pair.n_substeps() << ", max momentum error " << max_momentum_error
+            << ", max energy error " << max_energy_error << ", max exchange " << max_exchange
+            << "\n";
+}
+
+TEST(CoupledWave, PulseCrossesSteelRockInterfaceAsImpedanceTheorySays)
+{
+  // A 4 x 4 mm steel bar (FEM, 60 mm) on a 4 x 4 mm rock bar (SPH, 60 mm), end to end at z = 0.
+  // Poisson's ratio 0 in both makes the bars exactly one-dimensional (no lateral inertia, no
+  // dispersion from it): the 1-D theory holds without a bar correction. A sin^2 velocity pulse
+  // enters at the steel's far end and is measured in both bars, clear of all other reflections.
+  const double dx = 1e-3, L = 60e-3, a = 4e-3, v0 = 0.1, tau = 4e-6;
+  auto rock  = rock_block({-0.5 * a, -0.5 * a, 0.0}, {0.5 * a, 0.5 * a, L}, dx, rock_E, 0.0,
+                          rock_rho);
+  auto steel = steel_box(a, L, dx, 0.0, false);
+  steel->set_loaded_face_velocity([&](double t) {
+    // pushes the loaded face (z = -L) up into the bar: compression
+    if (t <= 0 || t >= tau)
+      return 0.0;
+    const double s = std::sin(pi * t / tau);
+    return v0 * s * s;
+  });
+  TwoBody pair(std::move(rock), std::move(steel), 0.1);
+
+  const double Z1 = std::sqrt(steel_E * steel_rho), Z2 = std::sqrt(rock_E * rock_rho);
+  const double c1 = std::sqrt(steel_E / steel_rho), c2 = std::sqrt(rock_E / rock_rho);
+  const double T_theory = 2 * Z2 / (Z1 + Z2), R_theory = (Z2 - Z1) / (Z1 + Z2);
+
+  // gauges: steel stress at z = -30 mm from the node layers at -29 and -31 mm; rock stress at
+  // z = 20 mm from the particle layers at 19.5 and 20.5 mm
+  const auto x0 = pair.platen().reference_positions();
+  std::vector<unsigned int> s_hi, s_lo, r_gauge;
+  for (unsigned int n = 0; n < x0.size() / 3; ++n)
+  {
+    if (std::abs(x0[3 * n + 2] + 29e-3) < 1e-6)
+      s_hi.push_back(n);
+    if (std::abs(x0[3 * n + 2] + 31e-3) < 1e-6)
+      s_lo.push_back(n);
+  }
+  const auto &xr = pair.rock().reference_positions();
+  for (unsigned int i = 0; i < xr.size(); ++i)
+    if (std::abs(xr[i][2] - 20e-3) < 0.6 * dx)
+      r_gauge.push_back(i);
+  ASSERT_EQ(s_hi.size(), 25u);
+  ASSERT_EQ(s_lo.size(), 25u);
+  ASSERT_EQ(r_gauge.size(), 32u);
+
+  auto steel_stress = [&] { // tension +
+    const auto u = pair.platen().mesh_snapshot().displacement;
+    double hi = 0, lo = 0;
+    for (unsigned int n : s_hi)
+      hi += u[3 * n + 2] / s_hi.size();
+    for (unsigned int n : s_lo)
+      lo += u[3 * n + 2] / s_lo.size();
+    return steel_E * (hi - lo) / 2e-3;
+  };
+  auto rock_stress = [&] {
+    double s = 0;
+    for (unsigned int i : r_gauge)
+      s += pair.rock().stress3(i)(2, 2) / r_gauge.size();
+    return s;
+  };
+
+  // windows (arrival of the pulse's front to its tail, with a margin): incident at the steel
+  // gauge, reflected back at it, transmitted at the rock gauge
+  const double t_inc0 = 30e-3 / c1, t_ref0 = 90e-3 / c1, t_tr0 = 60e-3 / c1 + 20e-3 / c2;
+  const double t_end = t_ref0 + tau + 1e-6;
+  ASSERT_LT(t_end, 150e-3 / c1) << "the reflection from the loaded end must not reach the gauge";
+  double incident = 0, reflected = 0, transmitted = 0;
+  while (pair.time() < t_end)
+  {
+    pair.step();
+    const double t = pair.time();
+    if (t > t_inc0 && t < t_inc0 + tau + 1e-6)
+      incident = std::min(incident, steel_stress()); // compression: negative
+    if (t > t_ref0 && t < t_ref0 + tau + 1e-6)
+    {
+      const double s = steel_stress();
+      reflected      = std::abs(s) > std::abs(reflected) ? s : reflected;
+    }
+    if (t > t_tr0 && t < t_tr0 + tau + 1e-6)
+      transmitted = std::min(transmitted, rock_stress());
+  }
+  // the incident pulse itself: rho c v0 in a 1-D bar. 2 %: the lumped-mass Q1 mesh has 20
+  // elements per pulse length, its dispersion lowers the peak by under 1 %
+  EXPECT_NEAR(incident / (-Z1 * v0), 1.0, 0.02);
+  const double T = transmitted / incident, R = reflected / incident;
+  std::cout << "[pulse] sigma_I " << incident << " Pa (theory " << -Z1 * v0 << "), T " << T
+            << " (theory " << T_theory << "), R " << R << " (theory " << R_theory
+            << "), n_substeps " << pair.n_substeps() << "\n";
+  // 5 %: the issue's tolerance. Error sources: the penalty layer (a spring in series with the
+  // interface, which the pulse's 4 us width sees as nearly rigid), SPH and FEM dispersion
+  EXPECT_NEAR(T / T_theory, 1.0, 0.05);
+  EXPECT_NEAR(R / R_theory, 1.0, 0.05);
+}
+
+TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
+{
+  // A 12 x 12 x 6 mm rock block on a fixed rigid platen, pressed with N (a body force), then pulled
+  // along x with T growing slowly. T acts on the bottom particle layer, in the contact plane, so
+  // that it exerts no tipping moment and the contact pressure stays uniform.
+  const double dx = 2e-3, mu_s = 0.5, mu_d = 0.4, N = 500.0;
+  auto rock = rock_block({-6e-3, -6e-3, 0.0}, {6e-3, 6e-3, 6e-3}, dx, rock_E, 0.28, rock_rho);
+  fem::PlatenGeometry g;
+  g.shape     = fem::PlatenShape::box;
+  g.size_x    = 30e-3;
+  g.size_y    = 20e-3;
+  g.thickness = 4e-3;
+  g.side      = fem::PlatenSide::below;
+  fem::Parameters fp;
+  fp.model        = fem::PlatenModel::rigid;
+  fp.element_size = 4e-3;
+  TwoBody pair(std::move(rock), std::make_unique<fem::Platen>(g, fp), 0.1, mu_s, mu_d);
+
+  const unsigned int n = pair.rock().n_particles();
+  std::vector<unsigned int> bottom;
+  for (unsigned int i = 0; i < n; ++i)
+    if (pair.rock().reference_positions()[i][2] < 0.5 * dx + 1e-9)
+      bottom.push_back(i);
+  double mass = 0;
+  for (double m : pair.rock().masses())
+    mass += m;
+  // the block on its penalty springs: omega = sqrt(n_bottom k / M); critical damping of the
+  // vertical motion (z only, so it takes nothing from the tangential balance)
+  const double omega = std::sqrt(bottom.size() * pair.stiffness() / mass);
+  const double dt    = pair.dt();
+  const double t_N   = 40 * 2 * pi / omega;  // N ramps up over 40 periods
+  const double t_T   = 400 * 2 * pi / omega; // T ramps from 0 to 1.25 mu_s N over 400 periods
+  auto smooth        = [](double s) { return s <= 0 ? 0.0 : s >= 1 ? 1.0 : s * s * (3 - 2 * s); };
+  double T_now       = 0;
+  auto loads         = [&](double t) {
+    const double Nt = N * smooth(t / t_N);
+    T_now           = 1.25 * mu_s * N * std::max(0.0, (t - 2 * t_N) / t_T);
+    return [&, Nt](sph::Body<3> &b) {
+      auto &f       = b.external_forces();
+      const auto &v = b.velocities();
+      const auto &m = b.masses();
+      for (unsigned int i = 0; i < n; ++i)
+        f[i][2] += -Nt * m[i] / mass - 2.0 * omega * m[i] * v[i][2];
+      for (unsigned int i : bottom)
+        f[i][0] += T_now / bottom.size();
+    };
+  };
+
+  // slip onset: every particle in contact slides (gross slip); then the friction force during
+  // sliding from the momentum balance of the block: F = T - dP/dt over a window
+  double T_slip = -1, impulse_T = 0, p_start = 0, t_start = -1;
+  const int window = 600;
+  int steps_sliding = 0;
+  bool all_in_contact = true;
+  for (int step = 0; step < 200000; ++step)
+  {
+    const double t = pair.time();
+    pair.step(loads(t));
+    if (t > t_N)
+      all_in_contact = all_in_contact && pair.n_contact() == bottom.size();
+    const std::size_t n_slide = pair.contact().n_sliding();
+    if (T_slip < 0 && pair.n_contact() > 0 && n_slide == pair.n_contact())
+      T_slip = T_now;
+    if (T_slip > 0)
+    {
+      ++steps_sliding;
+      // the window starts after 100 steps of sliding, when the stick-slip transient has passed
+      if (steps_sliding == 100)
+      {
+        p_start = pair.rock().momentum()[0];
+        t_start = pair.time();
+      }
+      else if (steps_sliding > 100)
+        impulse_T += T_now * dt;
+      if (steps_sliding == 100 + window)
+        break;
+    }
+  }
+  ASSERT_GT(T_slip, 0.0) << "the block never slid";
+  ASSERT_GT(t_start, 0.0);
+  EXPECT_TRUE(all_in_contact) << "the whole bottom layer must stay in contact";
+  const double duration = pair.time() - t_start;
+  const double friction = (impulse_T - (pair.rock().momentum()[0] - p_start)) / duration;
+  std::cout << "[friction] T_slip / (mu_s N) " << T_slip / (mu_s * N) << ", sliding friction / "
+            << "(mu_d N) " << friction / (mu_d * N) << ", slip velocity "
+            << pair.rock().momentum()[0] / mass << " m/s\n";
+  // 2 % (the issue's tolerance): the onset lags by the tangential oscillation of the stuck block
+  // (amplitude T-rate / omega, 0.2 % of mu_s N at this rate) and the normal force settles to
+  // N within a fraction of a per cent after critical damping
+  EXPECT_NEAR(T_slip / (mu_s * N), 1.0, 0.02);
+  EXPECT_NEAR(friction / (mu_d * N), 1.0, 0.02);
+  // it really slides: the block has gained speed
+  EXPECT_GT(pair.rock().momentum()[0] / mass, 0.0);
+}
