@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 using namespace coupling;
 using namespace coupling::testing;
@@ -58,18 +59,24 @@ TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
   const std::array<double, 3> p0{{p_rock0[0], p_rock0[1], p_rock0[2]}};
   const double e0 = pair.rock().energies().kinetic;
   ASSERT_GT(e0, 0.0);
-  auto total_energy = [&] {
+  // kinetic energies live at half steps (v after integrate is v(t + dt/2)); the stored energies
+  // (rock stress, penalty springs) at the step's positions x(t). The total at t therefore takes
+  // the mean of the kinetic energies before and after the step.
+  auto kinetic = [&] { return pair.rock().energies().kinetic + pair.platen().kinetic_energy(); };
+  auto stored  = [&] {
     const sph::Energies e = pair.rock().energies();
-    return e.kinetic + e.internal + e.dissipated() + pair.platen().kinetic_energy() +
-           pair.platen().strain_energy() + pair.contact().penalty_energy();
+    return e.internal + e.dissipated() + pair.platen().strain_energy() +
+           pair.contact().penalty_energy();
   };
-
   double max_momentum_error = 0, max_energy_error = 0, max_exchange = 0;
   std::size_t steps_in_contact = 0;
   const int n_steps = 400; // about 130 us: contact and separation, ~ 40 us after first touch
+  double final_energy_error = 0;
   for (int n = 0; n < n_steps; ++n)
   {
+    const double kinetic_before = kinetic();
     pair.step();
+    const double total = 0.5 * (kinetic_before + kinetic()) + stored();
     if (pair.n_contact() > 0)
     {
       ++steps_in_contact;
@@ -86,7 +93,16 @@ TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
     const std::array<double, 3> dp{
       {pr[0] + pf[0] - p0[0], pr[1] + pf[1] - p0[1], pr[2] + pf[2] - p0[2]}};
     max_momentum_error = std::max(max_momentum_error, norm(dp) / norm(p0));
-    max_energy_error   = std::max(max_energy_error, std::abs(total_energy() - e0) / e0);
+    max_energy_error   = std::max(max_energy_error, std::abs(total - e0) / e0);
+    final_energy_error = (kinetic() + stored() - e0) / e0; // out of contact: no staggering
+    if (std::getenv("COSIM_DEBUG") && n % 10 == 0)
+    {
+      const sph::Energies e = pair.rock().energies();
+      std::cout << n << " nc " << pair.n_contact() << " pr " << pr[2] << " pf " << pf[2] << " ek "
+                << e.kinetic << " ei " << e.internal << " ed " << e.dissipated() << " fk "
+                << pair.platen().kinetic_energy() << " fs " << pair.platen().strain_energy()
+                << " pen " << pair.contact().penalty_energy() << "\n";
+    }
   }
   ASSERT_GT(steps_in_contact, 5u) << "the bodies must collide, or the test proves nothing";
   EXPECT_EQ(pair.n_contact(), 0u) << "the rock should have bounced off by the end";
@@ -99,53 +115,66 @@ TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
   // sub-cycling, so only round-off of ~1e3 steps remains
   EXPECT_LT(max_momentum_error, 1e-10);
   // 2 % (the tolerance): kinetic + internal + dissipated (artificial viscosity, hourglass)
-  // + FEM kinetic + strain + penalty energy. Central differences keep a shadow energy; the
-  // energies are read at staggered time levels (kinetic at half steps), which shows as an
-  // oscillation of order omega dt around the constant
+  // + FEM kinetic + strain + penalty energy, kinetic centred on the step. Measured 1.9 % at the
+  // worst instant and 1.6 % after separation: the explicit penalty gains energy at the onset of
+  // contact (which falls inside a step), the known error of explicit penalty impact; a stiffer
+  // penalty gains more (0.2 of the bound: 2.5 %)
   EXPECT_LT(max_energy_error, 0.02);
+  EXPECT_LT(std::abs(final_energy_error), 0.02);
   std::cout << "[impact] steps in contact " << steps_in_contact << ", n_substeps "
             << pair.n_substeps() << ", max momentum error " << max_momentum_error
-            << ", max energy error " << max_energy_error << ", max exchange " << max_exchange
+            << ", max energy error " << max_energy_error << ", final energy error "
+            << final_energy_error << ", max exchange " << max_exchange
             << "\n";
 }
 
 TEST(CoupledWave, PulseCrossesSteelRockInterfaceAsImpedanceTheorySays)
 {
-  // A 4 x 4 mm steel bar (FEM, 60 mm) on a 4 x 4 mm rock bar (SPH, 60 mm), end to end at z = 0.
-  // Poisson's ratio 0 in both makes the bars exactly one-dimensional (no lateral inertia, no
-  // dispersion from it): the 1-D theory holds without a bar correction. A sin^2 velocity pulse
+  // A 4 x 4 mm steel bar (FEM) on a 4 x 4 mm rock bar (SPH), end to end at z = 0. Poisson's ratio
+  // 0 in both makes the bars exactly one-dimensional (no lateral inertia, no dispersion from
+  // it): the 1-D theory holds without a bar correction. A sin^2 velocity pulse of duration tau
   // enters at the steel's far end and is measured in both bars, clear of all other reflections.
-  const double dx = 1e-3, L = 60e-3, a = 4e-3, v0 = 0.1, tau = 4e-6;
-  auto rock  = rock_block({-0.5 * a, -0.5 * a, 0.0}, {0.5 * a, 0.5 * a, L}, dx, rock_E, 0.0,
+  const double dx = 1e-3, a = 4e-3, v0 = 0.1;
+  // The penalty layer is a spring of stiffness kappa per area between the bars: transparent
+  // for pulses much longer than its time constant Z1 Z2 / ((Z1 + Z2) kappa). At the driver's
+  // default stiffness (0.1 of the bound, limited by the lightest corner node) that constant is
+  // about 1.4 us and a 4 us pulse comes through at T = 0.38, R = -0.73 (measured); at 0.5 of the
+  // bound (0.28 us) an 8 us pulse gives T, R within 4 % and 2 % of the theory.
+  const double tau = 8e-6, scale = 0.5;
+  const double Z1 = std::sqrt(steel_E * steel_rho), Z2 = std::sqrt(rock_E * rock_rho);
+  const double c1 = std::sqrt(steel_E / steel_rho), c2 = std::sqrt(rock_E / rock_rho);
+  const double T_theory = 2 * Z2 / (Z1 + Z2), R_theory = (Z2 - Z1) / (Z1 + Z2);
+  // steel gauge d_s before the interface, steel bar 2 d_s; rock gauge d_r into the rock, rock bar
+  // long enough that the reflection from its free end comes back after the window
+  const double d_s = dx * std::ceil(1.25 * c1 * tau / dx);
+  const double d_r = dx * std::ceil(0.75 * c2 * tau / dx);
+  const double L_r = d_r + dx * std::ceil(c2 * tau / dx);
+  auto rock  = rock_block({-0.5 * a, -0.5 * a, 0.0}, {0.5 * a, 0.5 * a, L_r}, dx, rock_E, 0.0,
                           rock_rho);
-  auto steel = steel_box(a, L, dx, 0.0, false);
+  auto steel = steel_box(a, 2 * d_s, dx, 0.0, false);
   steel->set_loaded_face_velocity([&](double t) {
-    // pushes the loaded face (z = -L) up into the bar: compression
+    // pushes the loaded face (z = -2 d_s) up into the bar: compression
     if (t <= 0 || t >= tau)
       return 0.0;
     const double s = std::sin(pi * t / tau);
     return v0 * s * s;
   });
-  TwoBody pair(std::move(rock), std::move(steel), 0.1);
+  TwoBody pair(std::move(rock), std::move(steel), scale);
 
-  const double Z1 = std::sqrt(steel_E * steel_rho), Z2 = std::sqrt(rock_E * rock_rho);
-  const double c1 = std::sqrt(steel_E / steel_rho), c2 = std::sqrt(rock_E / rock_rho);
-  const double T_theory = 2 * Z2 / (Z1 + Z2), R_theory = (Z2 - Z1) / (Z1 + Z2);
-
-  // gauges: steel stress at z = -30 mm from the node layers at -29 and -31 mm; rock stress at
-  // z = 20 mm from the particle layers at 19.5 and 20.5 mm
+  // gauges: steel stress at z = -d_s from the node layers one element either side; rock stress
+  // at z = d_r from the two particle layers either side
   const auto x0 = pair.platen().reference_positions();
   std::vector<unsigned int> s_hi, s_lo, r_gauge;
   for (unsigned int n = 0; n < x0.size() / 3; ++n)
   {
-    if (std::abs(x0[3 * n + 2] + 29e-3) < 1e-6)
+    if (std::abs(x0[3 * n + 2] + d_s - dx) < 1e-3 * dx)
       s_hi.push_back(n);
-    if (std::abs(x0[3 * n + 2] + 31e-3) < 1e-6)
+    if (std::abs(x0[3 * n + 2] + d_s + dx) < 1e-3 * dx)
       s_lo.push_back(n);
   }
   const auto &xr = pair.rock().reference_positions();
   for (unsigned int i = 0; i < xr.size(); ++i)
-    if (std::abs(xr[i][2] - 20e-3) < 0.6 * dx)
+    if (std::abs(xr[i][2] - d_r) < 0.6 * dx)
       r_gauge.push_back(i);
   ASSERT_EQ(s_hi.size(), 25u);
   ASSERT_EQ(s_lo.size(), 25u);
@@ -158,7 +187,7 @@ TEST(CoupledWave, PulseCrossesSteelRockInterfaceAsImpedanceTheorySays)
       hi += u[3 * n + 2] / s_hi.size();
     for (unsigned int n : s_lo)
       lo += u[3 * n + 2] / s_lo.size();
-    return steel_E * (hi - lo) / 2e-3;
+    return steel_E * (hi - lo) / (2 * dx);
   };
   auto rock_stress = [&] {
     double s = 0;
@@ -169,33 +198,36 @@ TEST(CoupledWave, PulseCrossesSteelRockInterfaceAsImpedanceTheorySays)
 
   // windows (arrival of the pulse's front to its tail, with a margin): incident at the steel
   // gauge, reflected back at it, transmitted at the rock gauge
-  const double t_inc0 = 30e-3 / c1, t_ref0 = 90e-3 / c1, t_tr0 = 60e-3 / c1 + 20e-3 / c2;
-  const double t_end = t_ref0 + tau + 1e-6;
-  ASSERT_LT(t_end, 150e-3 / c1) << "the reflection from the loaded end must not reach the gauge";
+  const double margin = 0.25 * tau;
+  const double t_inc0 = d_s / c1, t_ref0 = 3 * d_s / c1, t_tr0 = 2 * d_s / c1 + d_r / c2;
+  const double t_end = t_ref0 + tau + margin;
+  ASSERT_LT(t_end, 5 * d_s / c1) << "the reflection from the loaded end must not reach the gauge";
   double incident = 0, reflected = 0, transmitted = 0;
   while (pair.time() < t_end)
   {
     pair.step();
     const double t = pair.time();
-    if (t > t_inc0 && t < t_inc0 + tau + 1e-6)
+    if (t > t_inc0 && t < t_inc0 + tau + margin)
       incident = std::min(incident, steel_stress()); // compression: negative
-    if (t > t_ref0 && t < t_ref0 + tau + 1e-6)
+    if (t > t_ref0 && t < t_ref0 + tau + margin)
     {
       const double s = steel_stress();
       reflected      = std::abs(s) > std::abs(reflected) ? s : reflected;
     }
-    if (t > t_tr0 && t < t_tr0 + tau + 1e-6)
+    if (t > t_tr0 && t < t_tr0 + tau + margin)
       transmitted = std::min(transmitted, rock_stress());
   }
-  // the incident pulse itself: rho c v0 in a 1-D bar. 2 %: the lumped-mass Q1 mesh has 20
-  // elements per pulse length, its dispersion lowers the peak by under 1 %
-  EXPECT_NEAR(incident / (-Z1 * v0), 1.0, 0.02);
   const double T = transmitted / incident, R = reflected / incident;
-  std::cout << "[pulse] sigma_I " << incident << " Pa (theory " << -Z1 * v0 << "), T " << T
-            << " (theory " << T_theory << "), R " << R << " (theory " << R_theory
-            << "), n_substeps " << pair.n_substeps() << "\n";
+  std::cout << "[pulse] tau " << tau << " scale " << scale << " sigma_I " << incident
+            << " Pa (theory " << -Z1 * v0 << "), T " << T << " (theory " << T_theory << "), R "
+            << R << " (theory " << R_theory << "), n_substeps " << pair.n_substeps()
+            << ", k " << pair.stiffness() << " N/m\n";
+  // the incident pulse itself: rho c v0 in a 1-D bar. 2 %: the lumped-mass Q1 mesh has 20 or
+  // more elements per pulse length, its dispersion lowers the peak by under 1 %
+  EXPECT_NEAR(incident / (-Z1 * v0), 1.0, 0.02);
   // 5 %: the tolerance. Error sources: the penalty layer (a spring in series with the
-  // interface, which the pulse's 4 us width sees as nearly rigid), SPH and FEM dispersion
+  // interface, which a pulse much longer than its time constant sees as rigid), SPH and FEM
+  // dispersion
   EXPECT_NEAR(T / T_theory, 1.0, 0.05);
   EXPECT_NEAR(R / R_theory, 1.0, 0.05);
 }
@@ -216,7 +248,8 @@ TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
   fem::Parameters fp;
   fp.model        = fem::PlatenModel::rigid;
   fp.element_size = 4e-3;
-  TwoBody pair(std::move(rock), std::make_unique<fem::Platen>(g, fp), 0.1, mu_s, mu_d);
+  const double fr = std::getenv("COSIM_NOFRIC") ? 0.0 : 1.0;
+  TwoBody pair(std::move(rock), std::make_unique<fem::Platen>(g, fp), 0.1, fr * mu_s, fr * mu_d);
 
   const unsigned int n = pair.rock().n_particles();
   std::vector<unsigned int> bottom;
@@ -226,9 +259,11 @@ TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
   double mass = 0;
   for (double m : pair.rock().masses())
     mass += m;
-  // the block on its penalty springs: omega = sqrt(n_bottom k / M); critical damping of the
-  // vertical motion (z only, so it takes nothing from the tangential balance)
+  // the block on its penalty springs: omega = sqrt(n_bottom k / M); critical damping of its
+  // vertical bounce (z only, so it takes nothing from the tangential balance)
   const double omega = std::sqrt(bottom.size() * pair.stiffness() / mass);
+  if (std::getenv("COSIM_DEBUG"))
+    std::cout << "bottom " << bottom.size() << " k " << pair.stiffness() << " M " << mass << " omega " << omega << " dt " << pair.dt() << "\n";
   const double dt    = pair.dt();
   const double t_N   = 40 * 2 * pi / omega;  // N ramps up over 40 periods
   const double t_T   = 400 * 2 * pi / omega; // T ramps from 0 to 1.25 mu_s N over 400 periods
@@ -241,8 +276,13 @@ TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
       auto &f       = b.external_forces();
       const auto &v = b.velocities();
       const auto &m = b.masses();
+      // damping acts on the block's mean vertical velocity only (its bounce on the contact
+      // springs): damping each particle would shrink the explicit step's stability margin
+      double vz = 0;
       for (unsigned int i = 0; i < n; ++i)
-        f[i][2] += -Nt * m[i] / mass - 2.0 * omega * m[i] * v[i][2];
+        vz += m[i] * v[i][2] / mass;
+      for (unsigned int i = 0; i < n; ++i)
+        f[i][2] += -Nt * m[i] / mass - (std::getenv("COSIM_NODAMP") ? 0.0 : 2.0) * omega * m[i] * vz;
       for (unsigned int i : bottom)
         f[i][0] += T_now / bottom.size();
     };
@@ -254,13 +294,17 @@ TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
   const int window = 600;
   int steps_sliding = 0;
   bool all_in_contact = true;
-  for (int step = 0; step < 200000; ++step)
+  for (int step = 0; step < (std::getenv("COSIM_STEPS") ? std::atoi(std::getenv("COSIM_STEPS")) : 20000); ++step)
   {
     const double t = pair.time();
     pair.step(loads(t));
     if (t > t_N)
       all_in_contact = all_in_contact && pair.n_contact() == bottom.size();
     const std::size_t n_slide = pair.contact().n_sliding();
+    if (std::getenv("COSIM_DEBUG") && step % (std::getenv("COSIM_STEPS") ? 10 : 500) == 0)
+      std::cout << step << " t " << t << " nc " << pair.n_contact() << " ns " << n_slide << " T "
+                << T_now << " Nc " << pair.contact().normal_force() << " vx "
+                << pair.rock().momentum()[0] / mass << "\n";
     if (T_slip < 0 && pair.n_contact() > 0 && n_slide == pair.n_contact())
       T_slip = T_now;
     if (T_slip > 0)
@@ -293,4 +337,33 @@ TEST(CoupledFriction, BlockSlidesAtStaticMuNAndSlidesAtDynamicMuN)
   EXPECT_NEAR(friction / (mu_d * N), 1.0, 0.02);
   // it really slides: the block has gained speed
   EXPECT_GT(pair.rock().momentum()[0] / mass, 0.0);
+}
+
+TEST(Debug, FreeBox)
+{
+  auto pl = steel_box(16e-3, 8e-3, 2e-3, 0.3, true);
+  std::cout << "dt " << pl->stable_time_step() << " nc " << pl->n_contact_nodes() << " M "
+            << pl->total_mass() << "\n";
+  std::vector<double> f(3 * pl->n_contact_nodes(), 0.0);
+  for (size_t i = 0; i < pl->n_contact_nodes(); ++i)
+    f[3 * i + 2] = -1.0;
+  double dt = 1e-7;
+  for (int n = 0; n < 20; ++n)
+  {
+    pl->add_contact_forces(f);
+    pl->step(n * dt, dt);
+    auto m = pl->nodal_masses();
+    auto v = pl->mesh_snapshot().velocity;
+    double P = 0;
+    for (size_t i = 2; i < v.size(); i += 3)
+      P += m[i / 3] * v[i];
+    auto Ku = pl->internal_force(pl->mesh_snapshot().displacement);
+    double sk = 0;
+    for (size_t i = 2; i < Ku.size(); i += 3)
+      sk += Ku[i];
+    std::cout << " sumKu " << sk << " loaded " << pl->reaction_force();
+    if (n % 5 == 4)
+      std::cout << n << " P " << P << " expect " << -1.0 * pl->n_contact_nodes() * (n + 0.5) * dt
+                << "\n";
+  }
 }

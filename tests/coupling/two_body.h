@@ -137,7 +137,8 @@ namespace coupling::testing
                                                   double density)
   {
     sph::Parameters p;
-    p.spacing = dx;
+    p.spacing   = dx;
+    p.n_threads = 1; // small bodies: threads cost more than they give on a loaded CI machine
     sph::MaterialParameters m;
     m.model          = sph::RockModel::elastic;
     m.youngs_modulus = youngs_modulus;
