@@ -561,6 +561,8 @@ namespace coupling
     std::vector<HistoryRow> rows;
     double peak_force       = 0;
     bool armed              = false;
+    bool touching           = false;
+    double touch_strain     = 0;
     bool stop               = false;
     std::string stop_reason = "end strain";
     while (!stop)
@@ -587,7 +589,15 @@ namespace coupling
         peak_force        = loading ? std::max(peak_force, load) : peak_force;
         // the failure criterion is armed once the specimen yields somewhere or has passed half of
         // its expected failure strain, so that the start-up transient cannot end the run
-        armed = armed || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
+        // strain counts from the first contact on both sides: curved jaws start with a gap
+        // (the arc over the lattice's discrete top), which the platen closes first
+        if (!touching && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
+        {
+          touching     = true;
+          touch_strain = r.strain;
+        }
+        armed = armed || r.n_failed > 0 ||
+                (touching && r.strain - touch_strain > 0.5 * plan_.expected_failure_strain);
         // the load has fallen past the post-peak drop: the specimen has failed
         if (loading && armed && peak_force > 0 &&
             load < (1.0 - prm_.loading.post_peak_drop) * peak_force)

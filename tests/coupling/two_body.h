@@ -76,11 +76,11 @@ namespace coupling::testing
         std::fill(surface_.mass.begin(), surface_.mass.end(), 0.0);
       const auto &x = rock_->positions();
       const auto &v = rock_->velocities();
-      const ContactParticles particles{x.front().data(), v.front().data(),
-                                       rock_->masses().data(), rock_->n_particles()};
+      const ContactParticles particles{x.front().data(), v.front().data(), rock_->masses().data(),
+                                       rock_->n_particles()};
       std::fill(f_rock_.begin(), f_rock_.end(), 0.0);
       std::fill(f_platen_.begin(), f_platen_.end(), 0.0);
-      n_contact_ = contact_->apply(particles, surface_, dt_, f_rock_, f_platen_);
+      n_contact_  = contact_->apply(particles, surface_, dt_, f_rock_, f_platen_);
       auto &f_ext = rock_->external_forces();
       for (unsigned int i = 0; i < rock_->n_particles(); ++i)
         for (int d = 0; d < 3; ++d)
@@ -140,10 +140,10 @@ namespace coupling::testing
     p.spacing   = dx;
     p.n_threads = 1; // small bodies: threads cost more than they give on a loaded CI machine
     sph::MaterialParameters m;
-    m.model          = sph::RockModel::elastic;
-    m.youngs_modulus = youngs_modulus;
-    m.poissons_ratio = poissons_ratio;
-    m.density        = density;
+    m.model            = sph::RockModel::elastic;
+    m.youngs_modulus   = youngs_modulus;
+    m.poissons_ratio   = poissons_ratio;
+    m.density          = density;
     const auto lattice = sph::make_block<3>(lower, upper, dx);
     return std::make_unique<sph::Body<3>>(p, m, lattice.positions, lattice.volumes);
   }
