@@ -93,6 +93,9 @@ namespace coupling
       {"Platens", "Diameter", Kind::real, "0", "", "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen"},
       {"Platens", "Element size", Kind::real, "0", "", "FEM element size [m]; 0 = from the particle spacing"},
       {"Platens", "Contact stiffness scale", Kind::real, "0.1", "", "penalty stiffness / its stability bound [-]"},
+      {"Platens", "Shape", Kind::selection, "flat", "flat|jaw",
+       "BTS: flat platens or ISRM curved loading jaws (UCS/CTCS: flat only)"},
+      {"Platens", "Jaw radius", Kind::real, "0", "", "BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius (ISRM)"},
 
       {"Loading", "Strain rate", Kind::real, "0", "", "nominal axial strain rate [1/s]; 0 = from the wave transit time"},
       {"Loading", "Transit times", Kind::real, "40", "", "derived rate: ramp to peak over this many wave transits [-]"},
@@ -690,6 +693,18 @@ namespace coupling
               "must be in [0, platen thickness] m (0 = from the particle spacing)");
     r.require(pl.contact_stiffness_scale > 0 && pl.contact_stiffness_scale <= 1, "Platens/Contact stiffness scale",
               "must be in (0, 1]");
+    pl.shape = r.get("Platens/Shape");
+    pl.jaw_radius = r.real("Platens/Jaw radius");
+    r.require(pl.shape == "flat" || p.test == "BTS", "Platens/Shape", "jaw is for BTS only; use flat for " + p.test);
+    r.require(pl.jaw_radius == 0 || pl.shape == "jaw", "Platens/Jaw radius", "is used with Platens/Shape = jaw only; leave it 0");
+    if (pl.shape == "jaw")
+    {
+      const double width = pl.diameter > 0 ? pl.diameter : 0.6 * p.diameter; // as the driver builds it
+      const double radius = pl.jaw_radius > 0 ? pl.jaw_radius : 0.75 * p.diameter;
+      r.require(pl.jaw_radius >= 0 && radius > 0.5 * p.diameter && radius > 0.5 * width, "Platens/Jaw radius",
+                "must exceed the disc radius (" + mm(0.5 * p.diameter) + ") and half the jaw width (" + mm(0.5 * width) +
+                  "); ISRM: 1.5 x the disc radius (0 = that)");
+    }
 
     // --- Loading
     LoadingParameters &ld = p.loading;

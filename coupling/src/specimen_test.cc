@@ -243,12 +243,24 @@ namespace coupling
     g.thickness = prm_.platens.thickness;
     if (bts_)
     {
-      g.shape  = fem::PlatenShape::box;
       g.size_x = prm_.platens.diameter > 0 ? prm_.platens.diameter : 0.6 * prm_.diameter;
       g.size_y = prm_.length + 4.0 * dx;
+      if (prm_.platens.shape == "jaw")
+      {
+        // ISRM curved jaw: contact arc of 1.5 disc radii unless given
+        g.shape      = fem::PlatenShape::jaw;
+        g.jaw_radius = prm_.platens.jaw_radius > 0 ? prm_.platens.jaw_radius : 0.75 * prm_.diameter;
+      }
+      else if (prm_.platens.shape == "flat")
+        g.shape = fem::PlatenShape::box;
+      else
+        throw InputError("Platens/Shape: unknown shape '" + prm_.platens.shape +
+                         "'; accepted: flat, jaw");
     }
     else
     {
+      if (prm_.platens.shape != "flat")
+        throw InputError("Platens/Shape: " + prm_.test + " uses flat platens; jaw is for BTS only");
       g.shape    = fem::PlatenShape::cylinder;
       g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : prm_.diameter + 4.0 * dx;
     }
@@ -396,6 +408,7 @@ namespace coupling
     std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);
     contact_top_->apply(particles, s_top, dt_, force_on_particles_, force_on_top_);
     contact_bottom_->apply(particles, s_bottom, dt_, force_on_particles_, force_on_bottom_);
+    max_exchange_imbalance_ = std::max(max_exchange_imbalance_, exchange_imbalance());
 
     // SPH <- contact forces; FEM <- their reactions (the sums cancel to round-off)
     auto &f_ext = body_->external_forces();
@@ -427,6 +440,25 @@ namespace coupling
     }
     time_ += dt_;
     ++n_steps_;
+  }
+
+  double SpecimenTest::exchange_imbalance() const
+  {
+    // what the rock receives and what the platens receive, each pair force counted on both sides
+    double total[3] = {0, 0, 0}, scale = 0;
+    for (std::size_t i = 0; i < force_on_particles_.size(); i += 3)
+    {
+      const double *f = &force_on_particles_[i];
+      scale += std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+      for (int d = 0; d < 3; ++d)
+        total[d] += f[d];
+    }
+    for (const auto *platen : {&force_on_top_, &force_on_bottom_})
+      for (std::size_t i = 0; i < platen->size(); ++i)
+        total[i % 3] += (*platen)[i];
+    if (!(scale > 0))
+      return 0.0;
+    return std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / scale;
   }
 
   HistoryRow SpecimenTest::measure() const
@@ -649,7 +681,9 @@ namespace coupling
                              armed_ ? 1.0 : 0.0,
                              dt_,
                              static_cast<double>(n_substeps_),
-                             static_cast<double>(body_->n_particles())};
+                             static_cast<double>(body_->n_particles()),
+                             touching_ ? 1.0 : 0.0,
+                             touch_strain_};
     std::vector<double> history;
     history.reserve(history_width * rows_.size());
     for (const auto &r : rows_)
@@ -661,7 +695,7 @@ namespace coupling
   {
     const auto s = in.find("driver.scalars");
     const auto h = in.find("driver.history");
-    if (s == in.end() || s->second.size() != 11 || h == in.end() ||
+    if (s == in.end() || s->second.size() != 13 || h == in.end() ||
         h->second.size() % history_width != 0)
       throw InputError("checkpoint: no driver state (driver.scalars, driver.history); not a "
                        "checkpoint of cosim run");
@@ -695,6 +729,8 @@ namespace coupling
     next_snap_     = d[5];
     peak_force_    = d[6];
     armed_         = d[7] != 0.0;
+    touching_      = d[11] != 0.0;
+    touch_strain_  = d[12];
     rows_.clear();
     for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
       rows_.push_back(row_at(h->second, k));
@@ -788,7 +824,15 @@ namespace coupling
         peak_force_       = loading ? std::max(peak_force_, load) : peak_force_;
         // the failure criterion is armed once the specimen yields somewhere or has passed half of
         // its expected failure strain, so that the start-up transient cannot end the run
-        armed_ = armed_ || r.n_failed > 0 || r.strain > 0.5 * plan_.expected_failure_strain;
+        // strain counts from the first contact on both sides: curved jaws start with a gap
+        // (the arc over the lattice's discrete top), which the platen closes first
+        if (!touching_ && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
+        {
+          touching_     = true;
+          touch_strain_ = r.strain;
+        }
+        armed_ = armed_ || r.n_failed > 0 ||
+                (touching_ && r.strain - touch_strain_ > 0.5 * plan_.expected_failure_strain);
         // the load has fallen past the post-peak drop: the specimen has failed
         if (loading && armed_ && peak_force_ > 0 &&
             load < (1.0 - prm_.loading.post_peak_drop) * peak_force_)
@@ -907,6 +951,7 @@ namespace coupling
     }
     s.max_kinetic_to_internal_energy = max_ratio;
     s.max_force_imbalance            = max_imbalance;
+    s.max_exchange_imbalance         = max_exchange_imbalance_;
     s.max_displacement               = 0;
     for (const auto &r : rows)
       s.max_displacement = std::max(s.max_displacement, r.displacement);

@@ -62,6 +62,7 @@ namespace coupling
     void select_gauges();
     double top_velocity(double t) const;
     void step();
+    double exchange_imbalance() const;
     HistoryRow measure() const;
     /// Every step: non-finite values, particles leaving the domain, kinetic energy past its
     /// bound, a collapsing stable time step. On failure reports the last good state to `observer`
@@ -82,6 +83,7 @@ namespace coupling
     double time_         = 0;
     std::size_t n_steps_ = 0;
     double frame_work_ = 0, pressure_work_ = 0;
+    double max_exchange_imbalance_ = 0; ///< see Summary::max_exchange_imbalance
     double domain_size_ = 0;
     // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
@@ -91,6 +93,8 @@ namespace coupling
     std::vector<HistoryRow> rows_;
     double next_row_ = 0, next_snap_ = 0, peak_force_ = 0;
     bool armed_ = false;
+    bool touching_ = false;      // both platens have touched the specimen
+    double touch_strain_ = 0;    // nominal strain at that moment
     // stability checks: dt_ = stable step * time_step_scale_ (TSSFAC above 1: the body is built
     // with TSSFAC 1 and the driver scales its step, so that an unstable step can be injected)
     double time_step_scale_ = 1, energy_floor_ = 0;

@@ -63,6 +63,9 @@ namespace fem
       check_positive(p.element_size, "Parameters::element_size [m]");
       check_positive(p.density, "Parameters::density [kg/m^3]");
       check_positive(p.time_step_safety, "Parameters::time_step_safety [-]");
+      if (p.free_body && p.model != PlatenModel::elastic)
+        throw std::invalid_argument("fem::Platen: Parameters::free_body needs the elastic model (a "
+                                    "rigid platen is defined by its prescribed motion)");
       if (p.model == PlatenModel::elastic)
       {
         check_positive(p.youngs_modulus, "Parameters::youngs_modulus [Pa]");
@@ -376,6 +379,8 @@ namespace fem
       if (on_loaded[n])
       {
         loaded_nodes.push_back(n);
+        if (p.free_body)
+          continue;
         prescribed[3 * n + 2] = true;
         if (p.loaded_face_lateral == LoadedFaceLateral::fixed)
           prescribed[3 * n] = prescribed[3 * n + 1] = true;
@@ -539,6 +544,9 @@ namespace fem
 
   void Platen::set_loaded_face_velocity(std::function<double(double)> velocity_z)
   {
+    if (impl_->prm.free_body)
+      throw std::logic_error("fem::Platen::set_loaded_face_velocity: a free body (Parameters::"
+                             "free_body) has no prescribed motion");
     impl_->velocity_z = std::move(velocity_z);
   }
 

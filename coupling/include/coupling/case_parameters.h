@@ -53,6 +53,8 @@ namespace coupling
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     double element_size = 0.0;    ///< FEM element size [m]; 0 = from the particle spacing
     double contact_stiffness_scale = 0.1; ///< penalty stiffness / its stability bound [-]; 0.5 rings
+    std::string shape = "flat";   ///< BTS: flat platens or ISRM curved jaws (jaw)
+    double jaw_radius = 0.0;      ///< BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius
   };
 
   /// Loading path. A strain rate of 0 derives the rate from the specimen's wave transit time.

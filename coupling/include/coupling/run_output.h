@@ -69,6 +69,10 @@ namespace coupling
     double max_kinetic_to_internal_energy = 0;
     double max_force_imbalance = 0;   ///< max |F_top - F_bottom| / peak force past 10 % load
     double energy_balance_error = 0;  ///< |E_kin + E_int + E_diss - W_ext| / W_ext at the end
+    /// Largest, over the steps, of |sum of contact forces on rock + on both platens| divided by
+    /// the sum of the contact-force magnitudes on the rock [-]: round-off when forces are
+    /// exchanged conservatively; 0 when nothing touched
+    double max_exchange_imbalance = 0;
     bool quasi_static = false;
     double true_area = 0;             ///< specimen cross-section pi D^2/4 (UCS) or D t (BTS) [m^2]
     double lattice_area = 0;          ///< cross-section of the particle lattice [m^2]

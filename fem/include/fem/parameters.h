@@ -74,6 +74,10 @@ namespace fem
     /// stable_time_step() = safety * (critical step from the power-iteration lambda_max) [-].
     double time_step_safety               = 0.9;
     LoadedFaceLateral loaded_face_lateral = LoadedFaceLateral::fixed;
+    /// Elastic only: true leaves every dof free, a body with no prescribed motion (impact and
+    /// wave checks). The loaded face is then traction free and reaction_force() is zero;
+    /// set_loaded_face_velocity() throws.
+    bool free_body = false;
     /// Power iteration for lambda_max(M^-1 K): iteration cap and relative residual to stop at.
     unsigned int power_iteration_max = 2000;
     double power_iteration_tolerance = 1e-4;

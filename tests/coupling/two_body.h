@@ -1,0 +1,150 @@
+#pragma once
+// Test fixture: one SPH rock body and one FEM body (fem::Platen) coupled through PenaltyContact,
+// stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_test.cc): contact
+// forces at the start of the step, SPH integrated with dt, the FEM body sub-cycled with dt/n and
+// the platen force held over the sub-steps, so that both sides receive the same impulse f dt.
+#include <coupling/contact.h>
+
+#include <fem/platen.h>
+#include <sph/body.h>
+#include <sph/lattice.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace coupling::testing
+{
+  /// Sum of the 3-vectors of a flat array.
+  inline std::array<double, 3> vector_sum(const std::vector<double> &f)
+  {
+    std::array<double, 3> s{{0, 0, 0}};
+    for (std::size_t i = 0; i < f.size(); ++i)
+      s[i % 3] += f[i];
+    return s;
+  }
+
+  class TwoBody
+  {
+  public:
+    /// contact_scale: the penalty stiffness as a fraction of its central-difference bound for the
+    /// lightest particle against the lightest contact node (rigid: the particle alone), as in
+    /// the driver.
+    TwoBody(std::unique_ptr<sph::Body<3>> rock, std::unique_ptr<fem::Platen> platen,
+            double contact_scale, double friction_static = 0, double friction_dynamic = 0)
+        : rock_(std::move(rock))
+        , platen_(std::move(platen))
+    {
+      dt_                 = rock_->stable_time_step();
+      const double dt_fem = platen_->stable_time_step();
+      n_sub_              = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
+      const auto &m       = rock_->masses();
+      const double m_p    = *std::min_element(m.begin(), m.end());
+      double m_n          = 0;
+      if (!platen_->is_rigid())
+      {
+        const auto mn = platen_->contact_masses();
+        m_n           = *std::min_element(mn.begin(), mn.end());
+      }
+      ContactParameters cp;
+      cp.stiffness        = contact_scale * stable_contact_stiffness(m_p, m_n, dt_);
+      cp.friction_static  = friction_static;
+      cp.friction_dynamic = friction_dynamic;
+      cp.radius           = 0.5 * rock_->parameters().spacing;
+      stiffness_          = cp.stiffness;
+      contact_            = std::make_unique<PenaltyContact>(cp, rock_->n_particles());
+      const auto &f       = platen_->contact_faces();
+      surface_.faces.resize(f.size() / 4);
+      for (std::size_t q = 0; q < surface_.faces.size(); ++q)
+        surface_.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+      f_rock_.assign(3 * rock_->n_particles(), 0.0);
+      f_platen_.assign(3 * platen_->n_contact_nodes(), 0.0);
+    }
+
+    /// One coupled step. `extra` may add forces [N] to the rock's external forces (loads,
+    /// damping) after the contact forces are known.
+    void step(const std::function<void(sph::Body<3> &)> &extra = {})
+    {
+      rock_->compute_forces();
+      surface_.position = platen_->contact_positions();
+      surface_.velocity = platen_->contact_velocities();
+      surface_.mass     = platen_->contact_masses();
+      if (platen_->is_rigid())
+        std::fill(surface_.mass.begin(), surface_.mass.end(), 0.0);
+      const auto &x = rock_->positions();
+      const auto &v = rock_->velocities();
+      const ContactParticles particles{x.front().data(), v.front().data(), rock_->masses().data(),
+                                       rock_->n_particles()};
+      std::fill(f_rock_.begin(), f_rock_.end(), 0.0);
+      std::fill(f_platen_.begin(), f_platen_.end(), 0.0);
+      n_contact_  = contact_->apply(particles, surface_, dt_, f_rock_, f_platen_);
+      auto &f_ext = rock_->external_forces();
+      for (unsigned int i = 0; i < rock_->n_particles(); ++i)
+        for (int d = 0; d < 3; ++d)
+          f_ext[i][d] += f_rock_[3 * i + d];
+      if (extra)
+        extra(*rock_);
+      rock_->integrate(dt_);
+      const double h = dt_ / n_sub_;
+      for (int k = 0; k < n_sub_; ++k)
+      {
+        platen_->add_contact_forces(f_platen_);
+        platen_->step(time_ + k * h, h);
+      }
+      time_ += dt_;
+    }
+
+    sph::Body<3> &rock() { return *rock_; }
+    fem::Platen &platen() { return *platen_; }
+    const PenaltyContact &contact() const { return *contact_; }
+    const std::vector<double> &force_on_rock() const { return f_rock_; }
+    const std::vector<double> &force_on_platen() const { return f_platen_; }
+    std::size_t n_contact() const { return n_contact_; }
+    double dt() const { return dt_; }
+    int n_substeps() const { return n_sub_; }
+    double time() const { return time_; }
+    double stiffness() const { return stiffness_; }
+
+    /// Momentum of the FEM body [kg m/s] (v at the last half step).
+    std::array<double, 3> platen_momentum() const
+    {
+      const auto m = platen_->nodal_masses();
+      const auto v = platen_->mesh_snapshot().velocity;
+      std::array<double, 3> p{{0, 0, 0}};
+      for (std::size_t i = 0; i < v.size(); ++i)
+        p[i % 3] += m[i / 3] * v[i];
+      return p;
+    }
+
+  private:
+    std::unique_ptr<sph::Body<3>> rock_;
+    std::unique_ptr<fem::Platen> platen_;
+    std::unique_ptr<PenaltyContact> contact_;
+    ContactSurface surface_;
+    std::vector<double> f_rock_, f_platen_;
+    double dt_ = 0, time_ = 0, stiffness_ = 0;
+    int n_sub_             = 1;
+    std::size_t n_contact_ = 0;
+  };
+
+  /// An elastic rock body on a block lattice.
+  inline std::unique_ptr<sph::Body<3>> rock_block(const sph::Vector<3> &lower,
+                                                  const sph::Vector<3> &upper, double dx,
+                                                  double youngs_modulus, double poissons_ratio,
+                                                  double density)
+  {
+    sph::Parameters p;
+    p.spacing   = dx;
+    p.n_threads = 1; // small bodies: threads cost more than they give on a loaded CI machine
+    sph::MaterialParameters m;
+    m.model            = sph::RockModel::elastic;
+    m.youngs_modulus   = youngs_modulus;
+    m.poissons_ratio   = poissons_ratio;
+    m.density          = density;
+    const auto lattice = sph::make_block<3>(lower, upper, dx);
+    return std::make_unique<sph::Body<3>>(p, m, lattice.positions, lattice.volumes);
+  }
+} // namespace coupling::testing
