@@ -251,6 +251,7 @@ namespace coupling
     ContactParameters cp;
     cp.stiffness =
       prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+    contact_stiffness_ = cp.stiffness;
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
     cp.radius                                = 0.5 * prm_.sph.spacing;
     contact_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
@@ -276,7 +277,7 @@ namespace coupling
                                      body_->n_particles()};
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_cutter_.begin(), force_on_cutter_.end(), 0.0);
-    contact_->apply(particles, s, dt_, force_on_particles_, force_on_cutter_);
+    n_in_contact_ = contact_->apply(particles, s, dt_, force_on_particles_, force_on_cutter_);
 
     auto &f_ext = body_->external_forces();
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
@@ -515,6 +516,8 @@ namespace coupling
     x.push_back({"cutter_speed_m_s", c.speed});
     x.push_back({"n_fixed_particles", double(n_fixed_)});
     x.push_back({"n_cutter_nodes", double(cutter_->n_nodes())});
+    x.push_back({"n_contact_particles", double(n_in_contact_)}); // at the end
+    x.push_back({"contact_stiffness_N_m", contact_stiffness_});
 
     // independent estimates (closed forms) for the same geometry and rock
     const RockParameters &rock = prm_.rock;
