@@ -99,10 +99,12 @@ namespace coupling
     build_cutter();
     choose_time_step();
 
-    // the path: down to the penetration, then (cutting) along x at that depth
-    const double v = c.speed;
-    ramp_down_     = 0.25 * c.penetration / v;
-    t_down_        = c.penetration / v + ramp_down_;
+    // the path: down to the penetration (from the depth where the tip meets the first particle,
+    // so that first contact falls in the start-up ramp), then (cutting) along x at that depth
+    const double v    = c.speed;
+    const double down = c.penetration - depth_;
+    ramp_down_        = 0.25 * down / v;
+    t_down_           = down / v + ramp_down_;
     t_cut_start_   = t_down_;
     t_end_         = t_down_;
     if (cutting_)
@@ -211,6 +213,21 @@ namespace coupling
     g.center_x  = cutting_ ? 0.5 * (c.block_length - c.cut_length) : 0.5 * c.block_length;
     g.center_y  = 0.0;
     start_x_    = g.center_x;
+    if (c.shape == "wedge" || c.shape == "cone")
+    {
+      // a sharp tip between lattice columns first meets a particle (contact radius r = dx/2, centre
+      // at z = -r) at the tip depth d = r + (rho cos(alpha) - r) / sin(alpha), rho the particle's
+      // lateral distance from the tip: the tip starts there instead of at z = 0 (no contact yet)
+      const double r = 0.5 * dx, a = g.tip_half_angle;
+      double rho_min = std::numeric_limits<double>::max();
+      for (const auto &p : body_->reference_positions())
+        if (p[2] > -dx)
+          rho_min = std::min(rho_min, c.shape == "cone" ? std::hypot(p[0] - g.center_x, p[1])
+                                                        : std::abs(p[0] - g.center_x));
+      depth_      = std::clamp(r + (rho_min * std::cos(a) - r) / std::sin(a), 0.0,
+                               0.5 * c.penetration);
+      g.contact_z = -depth_;
+    }
     fp.loaded_face_lateral = fem::LoadedFaceLateral::fixed;
     try
     {
