@@ -103,6 +103,7 @@ namespace coupling
       {"Cutter", "Shape", Kind::selection, "disc", "wedge|cone|flat|disc",
        "indentation: wedge, cone or flat (cylindrical punch); linear-cutting: disc (CCS disc cutter)"},
       {"Cutter", "Tip angle", Kind::real, "90", "", "wedge / cone included angle [deg]"},
+      {"Cutter", "Tip radius", Kind::real, "0", "", "wedge / cone tip rounding radius [m]; 0 = sharp"},
       {"Cutter", "Indenter width", Kind::real, "0.02", "", "wedge width across its tip, cone / punch diameter [m]"},
       {"Cutter", "Wedge length", Kind::real, "0.02", "", "wedge tip length along y [m]"},
       {"Cutter", "Disc diameter", Kind::real, "0.4318", "", "disc cutter diameter [m] (17 inch: 0.4318)"},
@@ -501,6 +502,8 @@ namespace coupling
       CutterParameters &c = p.cutter;
       c.shape = r.get("Cutter/Shape");
       c.tip_angle = r.real("Cutter/Tip angle");
+      c.tip_radius = r.real("Cutter/Tip radius");
+      r.require(c.tip_radius >= 0 && c.tip_radius <= 0.1, "Cutter/Tip radius", "must be in [0, 0.1] m");
       c.indenter_width = r.real("Cutter/Indenter width");
       c.wedge_length = r.real("Cutter/Wedge length");
       c.disc_diameter = r.real("Cutter/Disc diameter");

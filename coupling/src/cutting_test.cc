@@ -176,6 +176,7 @@ namespace coupling
     g.contact_z      = 0.0;
     g.thickness      = prm_.platens.thickness;
     g.tip_half_angle = 0.5 * c.tip_angle * pi / 180.0;
+    g.tip_radius     = c.tip_radius;
     double rim_rise  = 0;
     if (c.shape == "wedge")
     {
@@ -224,8 +225,11 @@ namespace coupling
         if (p[2] > -dx)
           rho_min = std::min(rho_min, c.shape == "cone" ? std::hypot(p[0] - g.center_x, p[1])
                                                         : std::abs(p[0] - g.center_x));
-      depth_      = std::clamp(r + (rho_min * std::cos(a) - r) / std::sin(a), 0.0,
-                               0.5 * c.penetration);
+      // (a rounded tip: its lowest point is lower by rho (1/sin(alpha) - 1) than the sharp
+      // flanks' apex, so this start is conservative: the tip meets no particle before it)
+      depth_      = std::clamp(r + (rho_min * std::cos(a) - r) / std::sin(a) -
+                                 c.tip_radius * (1.0 / std::sin(a) - 1.0),
+                               0.0, 0.5 * c.penetration);
       g.contact_z = -depth_;
     }
     fp.loaded_face_lateral = fem::LoadedFaceLateral::fixed;

@@ -54,7 +54,15 @@ namespace fem
       {
         case PlatenShape::wedge:
         case PlatenShape::cone:
-          return std::abs(r) / std::tan(g.tip_half_angle);
+        {
+          // a circular tip of radius rho up to r_t = rho cos(alpha), where it meets the flank
+          // tangentially (slope cot(alpha) on both sides)
+          const double rho = g.tip_radius, a = g.tip_half_angle, x = std::abs(r);
+          const double r_t = rho * std::cos(a);
+          if (x <= r_t)
+            return rho - std::sqrt(rho * rho - x * x);
+          return rho - rho * std::sin(a) + (x - r_t) / std::tan(a);
+        }
         case PlatenShape::disc_cutter:
           return g.cutter_radius - std::sqrt(g.cutter_radius * g.cutter_radius - r * r);
         case PlatenShape::jaw:

@@ -83,6 +83,34 @@ TEST(CutterMesh, ConeHasItsApexOnTheAxisAndItsVolume)
   EXPECT_NEAR(cone.mesh_volume() / V, 1.0, 0.02);
 }
 
+TEST(CutterMesh, RoundedConeTipIsTangentToItsFlanks)
+{
+  // 90-degree cone with a 3 mm tip radius: the circle up to r_t = rho cos(alpha), then the flank
+  fem::PlatenGeometry g;
+  g.shape          = fem::PlatenShape::cone;
+  g.diameter       = 0.016;
+  g.thickness      = 0.015;
+  g.tip_half_angle = pi / 4;
+  g.tip_radius     = 0.003;
+  const fem::Platen cone(g, steel(0.001));
+  const double rho = g.tip_radius, a = g.tip_half_angle, r_t = rho * std::cos(a);
+  const auto x     = cone.contact_positions();
+  std::size_t n_on_cap = 0;
+  for (std::size_t i = 0; i < x.size(); i += 3)
+  {
+    const double r = std::hypot(x[i], x[i + 1]);
+    // independent of fem's branch: the lower of the sphere cap and the flank shifted to be tangent
+    const double cap   = rho - std::sqrt(std::max(0.0, rho * rho - r * r));
+    const double flank = r / std::tan(a) - rho * (1.0 / std::sin(a) - 1.0);
+    const double z     = r <= r_t ? cap : flank;
+    n_on_cap += r <= r_t;
+    EXPECT_NEAR(x[i + 2], z, 1e-12);
+    EXPECT_GE(x[i + 2], flank - 1e-12); // the cap lies above the shifted flank (tangent from above)
+  }
+  EXPECT_GE(n_on_cap, 5u) << "the cap must be resolved by several nodes";
+  EXPECT_NEAR(lowest_node(cone)[2], 0.0, 1e-12);
+}
+
 TEST(CutterMesh, DiscCutterRimIsItsArc)
 {
   // 17-inch CCS disc (R = 215.9 mm), tip 12.7 mm wide, a 60 mm chord of the rim

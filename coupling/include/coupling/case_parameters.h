@@ -80,6 +80,7 @@ namespace coupling
   {
     std::string shape = "disc";     ///< wedge, cone, flat (cylindrical punch) or disc (CCS disc)
     double tip_angle = 90.0;        ///< wedge / cone included angle [deg]
+    double tip_radius = 0.0;        ///< wedge / cone tip rounding radius [m]; 0 = sharp
     double indenter_width = 0.02;   ///< wedge width across the tip, cone / punch diameter [m]
     double wedge_length = 0.02;     ///< wedge tip length along y [m]
     double disc_diameter = 0.4318;  ///< disc cutter diameter [m] (17 inch)

@@ -63,6 +63,8 @@ namespace fem
     /// wedge, cone: angle between the axis (z) and a flank [rad] (0.5 x the included angle).
     double tip_half_angle = 1.0471975511965976;
     double cutter_radius  = 0.2159; ///< disc_cutter: disc radius [m] (17-inch cutter: 0.2159)
+    /// wedge, cone: radius of the rounded tip [m], tangent to the flanks; 0 = sharp.
+    double tip_radius = 0.0;
     double contact_z  = 0.0;    ///< z of the contact face [m]
     double center_x   = 0.0;    ///< [m]
     double center_y   = 0.0;    ///< [m]
