@@ -61,9 +61,9 @@ namespace coupling
     // the CSM fit's constant C = 2.12 holds in any consistent units: the bracket is a stress cubed
     e.base_pressure = 2.12 * std::cbrt(spacing * ucs * ucs * bts /
                                        (e.contact_angle * std::sqrt(radius * tip_width)));
-    e.total   = e.base_pressure * e.contact_angle * radius * tip_width / (1.0 + psi);
-    e.normal  = e.total * std::cos(0.5 * e.contact_angle);
-    e.rolling = e.total * std::sin(0.5 * e.contact_angle);
+    e.total         = e.base_pressure * e.contact_angle * radius * tip_width / (1.0 + psi);
+    e.normal        = e.total * std::cos(0.5 * e.contact_angle);
+    e.rolling       = e.total * std::sin(0.5 * e.contact_angle);
     return e;
   }
 
@@ -105,8 +105,8 @@ namespace coupling
     const double down = c.penetration - depth_;
     ramp_down_        = 0.25 * down / v;
     t_down_           = down / v + ramp_down_;
-    t_cut_start_   = t_down_;
-    t_end_         = t_down_;
+    t_cut_start_      = t_down_;
+    t_end_            = t_down_;
     if (cutting_)
     {
       // a short dwell lets the indentation transient pass before the cut starts
@@ -248,10 +248,10 @@ namespace coupling
 
   std::array<double, 2> CuttingTest::cutter_velocity(const double t) const
   {
-    const double v = prm_.cutter.speed;
+    const double v  = prm_.cutter.speed;
     const double vz = -v * trapezoid(t, t_down_, ramp_down_);
-    const double vx = cutting_ ? v * trapezoid(t - t_cut_start_, t_end_ - t_cut_start_, ramp_cut_)
-                               : 0.0;
+    const double vx =
+      cutting_ ? v * trapezoid(t - t_cut_start_, t_end_ - t_cut_start_, ramp_cut_) : 0.0;
     return {{vx, vz}};
   }
 
@@ -259,7 +259,7 @@ namespace coupling
   {
     dt_                 = body_->stable_time_step();
     const double dt_fem = cutter_->stable_time_step();
-    n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
+    n_substeps_         = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
     // penalty stiffness as in the laboratory driver: a fraction of the central-difference bound
     const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
@@ -326,8 +326,8 @@ namespace coupling
       const double t = time_ + k * h;
       cutter_->step(t, h);
       // frame work: the load cell's force times the prescribed velocity (x and z)
-      const auto r           = cutter_->reaction_force_vector();
-      const auto vel         = cutter_velocity(t + 0.5 * h);
+      const auto r   = cutter_->reaction_force_vector();
+      const auto vel = cutter_velocity(t + 0.5 * h);
       frame_work_ += (r[0] * vel[0] + r[2] * vel[1]) * h;
       travel_ += vel[0] * h;
       depth_ -= vel[1] * h;
@@ -345,11 +345,11 @@ namespace coupling
     const double T = impulse_time_ > 0 ? impulse_time_ : 1.0;
     // normal force: the rock pushes the cutter up (+z); rolling force: it holds the cutter back
     // against its +x travel; side force: along +y
-    r.force         = impulse_[2] / T;
-    r.rolling_force = -impulse_[0] / T;
-    r.side_force    = impulse_[1] / T;
-    r.force_bottom  = support_impulse_z_ / T; // the supports push the block up: + in compression
-    impulse_        = {{0, 0, 0}};
+    r.force            = impulse_[2] / T;
+    r.rolling_force    = -impulse_[0] / T;
+    r.side_force       = impulse_[1] / T;
+    r.force_bottom     = support_impulse_z_ / T; // the supports push the block up: + in compression
+    impulse_           = {{0, 0, 0}};
     support_impulse_z_ = impulse_time_ = 0;
     // mean contact pressure on the tip's projected footprint is not defined for a sliding disc
     r.strain = depth_ / prm_.cutter.block_height;
@@ -357,8 +357,8 @@ namespace coupling
     const sph::Energies e = body_->energies();
     r.kinetic_energy      = e.kinetic + cutter_->kinetic_energy();
     r.internal_energy     = e.internal + cutter_->strain_energy() + contact_->penalty_energy();
-    r.dissipated_energy   = e.dissipated() + contact_->friction_dissipation() +
-                          cutter_->damping_dissipation();
+    r.dissipated_energy =
+      e.dissipated() + contact_->friction_dissipation() + cutter_->damping_dissipation();
     r.external_work = frame_work_;
     double failed   = 0;
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
@@ -494,7 +494,7 @@ namespace coupling
       rolling.push_back(r.rolling_force);
       side.push_back(r.side_force);
     }
-    s.peak_force = peak(all_normal);
+    s.peak_force     = peak(all_normal);
     double max_ratio = 0, max_imbalance = 0;
     for (const auto &r : rows)
     {
@@ -567,8 +567,8 @@ namespace coupling
         cavity  = pm * pi * std::pow(h * std::tan(alpha), 2);
       }
       else if (c.shape == "flat")
-        elastic = flat_punch_force(rock.youngs_modulus, rock.poissons_ratio,
-                                   0.5 * c.indenter_width, h);
+        elastic =
+          flat_punch_force(rock.youngs_modulus, rock.poissons_ratio, 0.5 * c.indenter_width, h);
       else
         cavity = pm * 2.0 * h * std::tan(alpha) * c.wedge_length;
       x.push_back({"elastic_closed_form_force_kN", elastic * 1e-3});

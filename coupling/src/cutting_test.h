@@ -104,8 +104,8 @@ namespace coupling
     std::array<double, 3> impulse_{{0, 0, 0}};
     double support_impulse_z_ = 0, impulse_time_ = 0;
     std::vector<double> force_on_particles_, force_on_cutter_;
-    std::size_t n_in_contact_ = 0;  ///< particles in contact at the last step
-    double contact_stiffness_ = 0;  ///< penalty stiffness per particle [N/m]
+    std::size_t n_in_contact_ = 0; ///< particles in contact at the last step
+    double contact_stiffness_ = 0; ///< penalty stiffness per particle [N/m]
   };
 
   /// Runs one indentation or linear-cutting case (see CuttingTest).

@@ -67,8 +67,8 @@ TEST(Indentation, FlatPunchFollowsBoussinesqInSeriesWithThePenaltyLayer)
   EXPECT_NEAR(depth, p.cutter.penetration, 1e-9);
   // Boussinesq's half-space stiffness 2 a E/(1 - nu^2) in series with the penalty springs of the
   // particles under the punch (n_c k_c): the contact layer is part of the model, not an error
-  const double k_b  = flat_punch_force(97.07e9, 0.28, 0.005, 1.0);
-  const double k    = 1.0 / (1.0 / k_b + 1.0 / (n_c * k_c));
+  const double k_b   = flat_punch_force(97.07e9, 0.28, 0.005, 1.0);
+  const double k     = 1.0 / (1.0 / k_b + 1.0 / (n_c * k_c));
   const double ratio = force / (k * depth);
   // 25 %: the block is finite (bottom held at 3.6 a, sides at 3.1 a from the axis: stiffer than a
   // half-space, by 10-20 % for such a layer), the punch's polygonal rim and the lattice count of

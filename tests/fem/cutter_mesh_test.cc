@@ -55,7 +55,8 @@ TEST(CutterMesh, WedgeFollowsItsFlanksAndHoldsItsVolume)
   // volume: box less the two triangular prisms under the flanks, a^2 / tan(alpha) per unit length;
   // the bending is bilinear in each cell, so the trilinear mesh is exact: round-off only
   const double a = 0.5 * g.size_x;
-  const double V = g.size_x * g.size_y * g.thickness - a * a / std::tan(g.tip_half_angle) * g.size_y;
+  const double V =
+    g.size_x * g.size_y * g.thickness - a * a / std::tan(g.tip_half_angle) * g.size_y;
   EXPECT_NEAR(wedge.mesh_volume() / V, 1.0, 1e-10);
   EXPECT_LT(wedge.contact_normal_z(), 0.0);
 }
@@ -79,7 +80,8 @@ TEST(CutterMesh, ConeHasItsApexOnTheAxisAndItsVolume)
   // 2 pi R^3 / (3 tan(alpha)). The mesh's polygonal hull and piecewise-bilinear cone lose a little
   // (0.6 % is the hull's share at 1 mm cells on an 8 mm radius, 0.7 % in all): 2 %
   const double R = 0.5 * g.diameter;
-  const double V = pi * R * R * g.thickness - 2.0 * pi * R * R * R / std::tan(g.tip_half_angle) / 3.0;
+  const double V =
+    pi * R * R * g.thickness - 2.0 * pi * R * R * R / std::tan(g.tip_half_angle) / 3.0;
   EXPECT_NEAR(cone.mesh_volume() / V, 1.0, 0.02);
 }
 
@@ -94,7 +96,7 @@ TEST(CutterMesh, RoundedConeTipIsTangentToItsFlanks)
   g.tip_radius     = 0.003;
   const fem::Platen cone(g, steel(0.001));
   const double rho = g.tip_radius, a = g.tip_half_angle, r_t = rho * std::cos(a);
-  const auto x     = cone.contact_positions();
+  const auto x         = cone.contact_positions();
   std::size_t n_on_cap = 0;
   for (std::size_t i = 0; i < x.size(); i += 3)
   {
@@ -141,11 +143,11 @@ TEST(CutterMesh, DiscCutterRimIsItsArc)
 TEST(CutterMotion, RigidCutterTranslatesAndItsLoadCellBalancesTheContactForce)
 {
   fem::PlatenGeometry g;
-  g.shape          = fem::PlatenShape::wedge;
-  g.size_x         = 0.02;
-  g.size_y         = 0.02;
-  g.thickness      = 0.02;
-  g.tip_half_angle = pi / 4;
+  g.shape             = fem::PlatenShape::wedge;
+  g.size_x            = 0.02;
+  g.size_y            = 0.02;
+  g.thickness         = 0.02;
+  g.tip_half_angle    = pi / 4;
   fem::Parameters prm = steel(0.005);
   prm.model           = fem::PlatenModel::rigid;
   fem::Platen wedge(g, prm);
@@ -157,8 +159,8 @@ TEST(CutterMotion, RigidCutterTranslatesAndItsLoadCellBalancesTheContactForce)
   for (std::size_t k = 0; k < wedge.n_nodes(); ++k)
     v0[3 * k] = vx, v0[3 * k + 2] = vz;
   wedge.set_state(u0, v0);
-  const auto x0   = wedge.contact_positions();
-  const double dt = 1e-6;
+  const auto x0       = wedge.contact_positions();
+  const double dt     = 1e-6;
   const std::size_t n = wedge.n_contact_nodes();
   // a constant contact force: 10 N per node along +x and +z (the rock pushing back)
   std::vector<double> f(3 * n, 0.0);
