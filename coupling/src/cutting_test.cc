@@ -275,7 +275,9 @@ namespace coupling
     contact_stiffness_ = cp.stiffness;
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
     cp.radius                                = 0.5 * prm_.sph.spacing;
-    contact_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    // every cutter is convex towards the rock (flat punch: flat, where both rules agree)
+    cp.convex_master = true;
+    contact_         = std::make_unique<PenaltyContact>(cp, body_->n_particles());
   }
 
   void CuttingTest::step()
