@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Plots the main curve of a cosim run: stress-strain (UCS, CTCS) or stress-displacement (BTS).
+"""Plots the main curve of a cosim run: stress-strain (UCS, CTCS), stress-displacement (BTS) or
+the cutter forces against travel / depth (linear-cutting, indentation).
 
 usage: plot_curve.py HISTORY_CSV TEST OUT_PNG
 Exit status 3 with one line on stderr when matplotlib is missing.
@@ -24,7 +25,17 @@ def main(argv):
         rows = list(csv.DictReader(f))
     col = lambda name: [float(r[name]) if r[name] not in ("", "null") else float("nan") for r in rows]
     fig, ax = plt.subplots(figsize=(6, 4.5), dpi=150)
-    if test == "BTS":
+    if test in ("INDENTATION", "LINEAR-CUTTING"):
+        # forces on the cutter against its travel (cutting) or depth (indentation)
+        d = col("displacement_mm")
+        ax.plot(d, col("force_kN"), color="C0", label="normal")
+        if test == "LINEAR-CUTTING":
+            ax.plot(d, col("rolling_force_kN"), color="C1", label="rolling")
+        ax.plot(d, col("side_force_kN"), color="C2", label="side", alpha=0.7)
+        ax.legend()
+        ax.set_xlabel("cutter travel [mm]" if test == "LINEAR-CUTTING" else "indentation depth [mm]")
+        ax.set_ylabel("force on the cutter [kN]")
+    elif test == "BTS":
         ax.plot(col("displacement_mm"), col("stress_MPa"), color="C0")
         ax.set_xlabel("displacement [mm]")
         ax.set_ylabel("tensile stress 2P/(\u03c0Dt) [MPa]")

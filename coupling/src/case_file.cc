@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -44,7 +45,8 @@ namespace coupling
 
     // Every key of CaseParameters. Units SI; angles in degrees.
     const Key keys[] = {
-      {"Test", "Type", Kind::selection, "UCS", "UCS|BTS|CTCS", "UCS (cylinder), BTS (disc), CTCS (confined cylinder)"},
+      {"Test", "Type", Kind::selection, "UCS", "UCS|BTS|CTCS|indentation|linear-cutting",
+       "UCS (cylinder), BTS (disc), CTCS (confined cylinder), indentation, linear-cutting (rock block, Cutter section)"},
       {"Test", "Name", Kind::text, "", "", "case name; empty = the case file's stem"},
       {"Test", "Diameter", Kind::real, "0.05", "", "specimen diameter [m]"},
       {"Test", "Length", Kind::real, "0.1", "", "UCS/CTCS specimen length, BTS disc thickness [m]"},
@@ -103,6 +105,22 @@ namespace coupling
       {"Loading", "Post-peak drop", Kind::real, "0.2", "", "stop when the load fell this fraction below its peak [-]"},
       {"Loading", "Max kinetic ratio", Kind::real, "0.01", "", "quasi-static limit, kinetic / internal energy [-]"},
       {"Loading", "Max force imbalance", Kind::real, "0.05", "", "quasi-static limit, |F_top - F_bottom| / F [-]"},
+
+      {"Cutter", "Shape", Kind::selection, "disc", "wedge|cone|flat|disc",
+       "indentation: wedge, cone or flat (cylindrical punch); linear-cutting: disc (CCS disc cutter)"},
+      {"Cutter", "Tip angle", Kind::real, "90", "", "wedge / cone included angle [deg]"},
+      {"Cutter", "Tip radius", Kind::real, "0", "", "wedge / cone tip rounding radius [m]; 0 = sharp"},
+      {"Cutter", "Indenter width", Kind::real, "0.02", "", "wedge width across its tip, cone / punch diameter [m]"},
+      {"Cutter", "Wedge length", Kind::real, "0.02", "", "wedge tip length along y [m]"},
+      {"Cutter", "Disc diameter", Kind::real, "0.4318", "", "disc cutter diameter [m] (17 inch: 0.4318)"},
+      {"Cutter", "Tip width", Kind::real, "0.0127", "", "CCS disc tip width [m]"},
+      {"Cutter", "Penetration", Kind::real, "0.005", "", "depth of cut (linear-cutting) or final depth (indentation) [m]"},
+      {"Cutter", "Line spacing", Kind::real, "0.075", "", "spacing between cuts [m], for the CSM estimate (one pass is cut)"},
+      {"Cutter", "Speed", Kind::real, "4", "", "cutting speed along x, indentation speed along -z [m/s]"},
+      {"Cutter", "Cut length", Kind::real, "0.08", "", "distance cut along x [m]"},
+      {"Cutter", "Block length", Kind::real, "0.15", "", "rock block along the cut (x) [m]"},
+      {"Cutter", "Block width", Kind::real, "0.1", "", "rock block across the cut (y) [m]"},
+      {"Cutter", "Block height", Kind::real, "0.05", "", "rock block depth (z) [m]"},
 
       {"Output", "History rows", Kind::integer, "400", "", "about this many rows in history.csv"},
       {"Output", "Snapshots", Kind::integer, "20", "", "particle / mesh snapshots in results.h5"},
@@ -487,6 +505,62 @@ namespace coupling
     }
 
     std::string mm(double v) { return format(v * 1e3) + " mm"; }
+
+    /// The Cutter section of an indentation / linear-cutting case, validated; warns about keys of
+    /// the laboratory tests that these tests do not use.
+    void read_cutter(const Reader &r, CaseParameters &p, std::vector<std::string> &warnings)
+    {
+      CutterParameters &c = p.cutter;
+      c.shape = r.get("Cutter/Shape");
+      c.tip_angle = r.real("Cutter/Tip angle");
+      c.tip_radius = r.real("Cutter/Tip radius");
+      r.require(c.tip_radius >= 0 && c.tip_radius <= 0.1, "Cutter/Tip radius", "must be in [0, 0.1] m");
+      c.indenter_width = r.real("Cutter/Indenter width");
+      c.wedge_length = r.real("Cutter/Wedge length");
+      c.disc_diameter = r.real("Cutter/Disc diameter");
+      c.tip_width = r.real("Cutter/Tip width");
+      c.penetration = r.real("Cutter/Penetration");
+      c.line_spacing = r.real("Cutter/Line spacing");
+      c.speed = r.real("Cutter/Speed");
+      c.cut_length = r.real("Cutter/Cut length");
+      c.block_length = r.real("Cutter/Block length");
+      c.block_width = r.real("Cutter/Block width");
+      c.block_height = r.real("Cutter/Block height");
+      const bool cutting = p.test == "linear-cutting";
+      if (cutting)
+        r.require(c.shape == "disc", "Cutter/Shape", "linear-cutting rolls a disc cutter: set it to disc");
+      else
+        r.require(c.shape != "disc", "Cutter/Shape", "indentation presses a wedge, cone or flat punch: set one of them");
+      r.require(c.tip_angle >= 30 && c.tip_angle <= 170, "Cutter/Tip angle", "must be in [30, 170] degrees");
+      r.require(c.indenter_width > 0 && c.indenter_width <= 1, "Cutter/Indenter width", "must be in (0, 1] m");
+      r.require(c.wedge_length > 0 && c.wedge_length <= 1, "Cutter/Wedge length", "must be in (0, 1] m");
+      r.require(c.disc_diameter > 0.02 && c.disc_diameter <= 1, "Cutter/Disc diameter", "must be in (0.02, 1] m");
+      r.require(c.tip_width > 0 && c.tip_width <= 0.1, "Cutter/Tip width", "must be in (0, 0.1] m");
+      r.require(c.line_spacing > 0 && c.line_spacing <= 1, "Cutter/Line spacing", "must be in (0, 1] m");
+      r.require(c.speed > 0 && c.speed <= 100, "Cutter/Speed", "must be in (0, 100] m/s");
+      r.require(c.block_length > 0 && c.block_length <= 2, "Cutter/Block length", "must be in (0, 2] m");
+      r.require(c.block_width > 0 && c.block_width <= 2, "Cutter/Block width", "must be in (0, 2] m");
+      r.require(c.block_height > 0 && c.block_height <= 2, "Cutter/Block height", "must be in (0, 2] m");
+      r.require(c.penetration > 0 && c.penetration < 0.5 * c.block_height, "Cutter/Penetration",
+                "must be in (0, Block height / 2 = " + mm(0.5 * c.block_height) + ")");
+      if (cutting)
+        r.require(c.cut_length > 0 && c.cut_length <= 0.8 * c.block_length, "Cutter/Cut length",
+                  "must be in (0, 0.8 x Block length = " + mm(0.8 * c.block_length) + "]");
+      const double smallest = std::min({c.block_length, c.block_width, c.block_height});
+      if (!(p.sph.spacing <= smallest / 10))
+        r.fail("SPH/Particle spacing", "too coarse for the " + mm(c.block_length) + " x " + mm(c.block_width) + " x " +
+                                         mm(c.block_height) + " block: at most 1/10 of its smallest side (" +
+                                         mm(smallest / 10) + ")");
+      r.require(p.sph.spacing <= 0.5 * c.penetration, "SPH/Particle spacing",
+                "must be at most half the Cutter/Penetration (" + mm(0.5 * c.penetration) +
+                  ") so that at least two particle layers are cut");
+      for (const char *key : {"Test/Diameter", "Test/Length", "Platens/Diameter", "Loading/Strain rate",
+                              "Loading/Transit times", "Loading/End strain", "Loading/Post-peak drop",
+                              "Loading/Max force imbalance"})
+        if (r.was_set(key))
+          warnings.push_back(std::string(key) + " is not used by Test/Type = " + p.test +
+                             " (the Cutter section sets the block and the path)");
+    }
   } // namespace
 
   std::string case_file_keys_help()
@@ -570,15 +644,19 @@ namespace coupling
     p.sph.av_beta = r.real("SPH/Viscosity beta");
     p.sph.hourglass = r.real("SPH/Hourglass coefficient");
     p.sph.n_threads = r.integer("SPH/Threads");
+    const bool cutting = p.test == "indentation" || p.test == "linear-cutting";
     const double smallest = p.test == "BTS" ? std::min(p.diameter, p.length) : std::min(p.diameter, p.length);
     r.require(p.sph.spacing > 0, "SPH/Particle spacing", "must be > 0 m (e.g. 0.001 to 0.005)");
-    if (!(p.sph.spacing <= smallest / 10))
+    if (cutting)
+      read_cutter(r, p, result.warnings); // checks the spacing against the block
+    else if (!(p.sph.spacing <= smallest / 10))
       throw InputError(r.origin(r.was_set("SPH/Particle spacing") ? "SPH/Particle spacing" : "Test/Diameter") +
                        ": SPH/Particle spacing = " + r.get("SPH/Particle spacing") + " m is too coarse for a " +
                        mm(p.diameter) + " x " + mm(p.length) + " specimen: must be at most 1/10 of its smallest "
                        "dimension (" + mm(smallest / 10) + ") so that at least 10 particles span it");
     {
-      const double volume = 3.14159265358979 / 4 * p.diameter * p.diameter * p.length;
+      const double volume = cutting ? p.cutter.block_length * p.cutter.block_width * p.cutter.block_height
+                                    : 3.14159265358979 / 4 * p.diameter * p.diameter * p.length;
       const double n_estimate = volume / std::pow(p.sph.spacing, 3);
       r.require(n_estimate <= 2e8, "SPH/Particle spacing",
                 "gives about " + format(std::round(n_estimate / 1e6)) +
@@ -631,6 +709,7 @@ namespace coupling
     rock.youngs_modulus = r.optional("Rock/Youngs modulus").value_or(group->youngs_modulus);
     rock.poissons_ratio = r.optional("Rock/Poissons ratio").value_or(group->poissons_ratio);
     rock.ucs = r.optional("Rock/UCS").value_or(group->ucs);
+    rock.bts = group->bts;
     const bool cutoff = rock.model == "mohr-coulomb-cutoff";
     rock.tensile_strength = r.optional("Rock/Tensile strength").value_or(cutoff ? group->bts : 0.0);
     const bool needs_mc = rock.model == "mohr-coulomb" || cutoff;

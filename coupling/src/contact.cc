@@ -179,7 +179,7 @@ namespace coupling
       if (distance < -2.0 * prm_.radius || distance > prm_.radius)
         continue;
       const double gap = distance - prm_.radius;
-      if (best.face < 0 || gap < best.gap)
+      if (best.face < 0 || (prm_.convex_master ? gap > best.gap : gap < best.gap))
       {
         best.face   = f;
         best.gap    = gap;

@@ -64,6 +64,8 @@ namespace coupling
       {"dissipated_energy_J", [](const HistoryRow &r) { return r.dissipated_energy; }},
       {"external_work_J", [](const HistoryRow &r) { return r.external_work; }},
       {"n_failed", [](const HistoryRow &r) { return r.n_failed; }},
+      {"rolling_force_kN", [](const HistoryRow &r) { return r.rolling_force * 1e-3; }},
+      {"side_force_kN", [](const HistoryRow &r) { return r.side_force * 1e-3; }},
     };
   } // namespace
 
@@ -89,7 +91,10 @@ namespace coupling
       << "  \"true_area_mm2\": " << number(s.true_area * 1e6) << ",\n"
       << "  \"lattice_area_mm2\": " << number(s.lattice_area * 1e6) << ",\n"
       << "  \"strain_rate_per_s\": " << number(s.strain_rate) << ",\n"
-      << "  \"time_step_s\": " << number(s.time_step) << ",\n"
+      << "  \"time_step_s\": " << number(s.time_step) << ",\n";
+    for (const auto &[key, value] : s.extra)
+      o << "  " << quoted(key) << ": " << (std::isfinite(value) ? number(value) : "null") << ",\n";
+    o
       << "  \"stop_reason\": " << quoted(s.stop_reason) << "\n"
       << "}\n";
     return o.str();

@@ -1,5 +1,7 @@
 #include "specimen_test.h"
 
+#include "cutting_test.h"
+
 #include <coupling/curve_analysis.h>
 #include <coupling/run_case.h>
 
@@ -105,6 +107,16 @@ namespace coupling
       return s * s;
     }
   } // namespace
+
+  sph::MaterialParameters sph_material(const RockParameters &rock)
+  {
+    return material(rock);
+  }
+
+  sph::Parameters sph_numerics(const SphParameters &sph)
+  {
+    return numerics(sph);
+  }
 
   double model_ucs(const RockParameters &r)
   {
@@ -972,6 +984,8 @@ namespace coupling
   Summary run_case(const CaseParameters &parameters, RunObserver &observer,
                    const StateArrays *resume)
   {
+    if (parameters.test == "indentation" || parameters.test == "linear-cutting")
+      return run_cutting_case(parameters, observer);
     SpecimenTest test(parameters);
     return test.run(observer, resume);
   }

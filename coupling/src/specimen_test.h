@@ -8,6 +8,8 @@
 #include <coupling/contact.h>
 #include <coupling/run_output.h>
 
+#include <sph/parameters.h>
+
 #include <memory>
 #include <vector>
 
@@ -35,6 +37,10 @@ namespace coupling
     double confinement_time        = 0; ///< CTCS: pressure ramp before axial loading [s]
     double planned_strain          = 0; ///< strain at which the planned path ends [-]
   };
+
+  /// The SPH material and numerics of a case (throws InputError for unknown names).
+  sph::MaterialParameters sph_material(const RockParameters &rock);
+  sph::Parameters sph_numerics(const SphParameters &sph);
 
   /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
   double model_ucs(const RockParameters &rock);

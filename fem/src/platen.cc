@@ -46,9 +46,35 @@ namespace fem
       }
     }
 
+    /// Height [m] of the contact face above the tip at lateral distance `r` [m] from the tip
+    /// (wedge: |x|; cone: the radius; disc cutter, jaw: |x|): the profile the flat face is bent to.
+    double tip_rise(const PlatenGeometry &g, const double r)
+    {
+      switch (g.shape)
+      {
+        case PlatenShape::wedge:
+        case PlatenShape::cone:
+        {
+          // a circular tip of radius rho up to r_t = rho cos(alpha), where it meets the flank
+          // tangentially (slope cot(alpha) on both sides)
+          const double rho = g.tip_radius, a = g.tip_half_angle, x = std::abs(r);
+          const double r_t = rho * std::cos(a);
+          if (x <= r_t)
+            return rho - std::sqrt(rho * rho - x * x);
+          return rho - rho * std::sin(a) + (x - r_t) / std::tan(a);
+        }
+        case PlatenShape::disc_cutter:
+          return g.cutter_radius - std::sqrt(g.cutter_radius * g.cutter_radius - r * r);
+        case PlatenShape::jaw:
+          return g.jaw_radius - std::sqrt(g.jaw_radius * g.jaw_radius - r * r);
+        default:
+          return 0.0;
+      }
+    }
+
     void validate(const PlatenGeometry &g, const Parameters &p)
     {
-      if (g.shape == PlatenShape::cylinder)
+      if (g.shape == PlatenShape::cylinder || g.shape == PlatenShape::cone)
         check_positive(g.diameter, "PlatenGeometry::diameter [m]");
       else
       {
@@ -60,6 +86,25 @@ namespace fem
             std::to_string(0.5 * g.size_x) + ", got " + std::to_string(g.jaw_radius));
       }
       check_positive(g.thickness, "PlatenGeometry::thickness [m]");
+      // the tip profile must leave the body at least a third of its thickness at the rim, or the
+      // bent cells invert
+      const double rim_rise = tip_rise(g, g.shape == PlatenShape::cone ? 0.5 * g.diameter
+                                                                          : 0.5 * g.size_x);
+      if (g.shape == PlatenShape::wedge || g.shape == PlatenShape::cone)
+        if (!(g.tip_half_angle > 0.05 && g.tip_half_angle < 1.53))
+          throw std::invalid_argument("fem::Platen: PlatenGeometry::tip_half_angle must lie in "
+                                      "(0.05, 1.53) rad, got " +
+                                      std::to_string(g.tip_half_angle));
+      if (g.shape == PlatenShape::disc_cutter && !(g.cutter_radius > 0.5 * g.size_x))
+        throw std::invalid_argument(
+          "fem::Platen: PlatenGeometry::cutter_radius [m] must exceed size_x / 2 = " +
+          std::to_string(0.5 * g.size_x) + ", got " + std::to_string(g.cutter_radius));
+      if (!(rim_rise < 2.0 / 3.0 * g.thickness))
+        throw std::invalid_argument(
+          "fem::Platen: PlatenGeometry::thickness [m] must exceed 1.5 x the rise of the tip "
+          "profile at the rim (" +
+          std::to_string(rim_rise) + " m); got " + std::to_string(g.thickness) +
+          "; make the body thicker or narrower");
       check_positive(p.element_size, "Parameters::element_size [m]");
       check_positive(p.density, "Parameters::density [kg/m^3]");
       check_positive(p.time_step_safety, "Parameters::time_step_safety [-]");
@@ -87,13 +132,15 @@ namespace fem
 
     /// Cylinder of the geometry's diameter and thickness, axis along z, z in [0, thickness],
     /// centred on the z axis. End faces keep ids 1 and 2, the hull id 0.
-    void make_cylinder(Triangulation<3> &tria, const PlatenGeometry &g, const double h)
+    void make_cylinder(Triangulation<3> &tria, const PlatenGeometry &g, const double h,
+                       const unsigned int min_refine = 0)
     {
       const double radius = 0.5 * g.diameter;
       // The coarse cross-section (a square and four shells) has edges of about radius/sqrt(2)
       // (the shells are thicker at the rim); refine until the in-plane edge is <= 1.2 h.
       unsigned int n_refine = 0;
-      while (0.75 * radius / std::pow(2.0, n_refine) > 1.2 * h && n_refine < 8)
+      while ((0.75 * radius / std::pow(2.0, n_refine) > 1.2 * h || n_refine < min_refine) &&
+             n_refine < 8)
         ++n_refine;
       const double axial_after_refine = g.thickness / std::pow(2.0, n_refine);
       const unsigned int x_sub        = n_cells_for(axial_after_refine, h);
@@ -132,7 +179,11 @@ namespace fem
     /// Box centred on the z axis, z in [0, thickness]. Colorized ids 0..5 (x-, x+, y-, y+, z-, z+).
     void make_box(Triangulation<3> &tria, const PlatenGeometry &g, const double h)
     {
-      const std::vector<unsigned int> reps = {n_cells_for(g.size_x, h), n_cells_for(g.size_y, h),
+      unsigned int n_x = n_cells_for(g.size_x, h);
+      // wedge, disc cutter: an even count puts a vertex line on the tip (x = 0)
+      if ((g.shape == PlatenShape::wedge || g.shape == PlatenShape::disc_cutter) && n_x % 2 == 1)
+        ++n_x;
+      const std::vector<unsigned int> reps = {n_x, n_cells_for(g.size_y, h),
                                               n_cells_for(g.thickness, h)};
       GridGenerator::subdivided_hyper_rectangle(
         tria, reps, Point<3>(-0.5 * g.size_x, -0.5 * g.size_y, 0.0),
@@ -175,10 +226,13 @@ namespace fem
     Vector<double> u, v, Ku, Kv, f_ext, du_prev;
 
     std::function<double(double)> velocity_z;
+    std::function<double(double)> velocity_x;
     double time_             = 0.0;
     double dt_prev           = 0.0;
     double rigid_vz          = 0.0; ///< rigid body z velocity at the last half step [m/s]
+    double rigid_vx          = 0.0; ///< rigid body x velocity at the last half step [m/s]
     double reaction          = 0.0;
+    double reaction_xyz[3]   = {0, 0, 0}; ///< frame force on the loaded face [N]
     double work              = 0.0;
     double dissipated        = 0.0;
     double strain_energy_mid = 0.0; ///< [J], see step()
@@ -193,6 +247,8 @@ namespace fem
     validate(g, p);
     if (g.shape == PlatenShape::cylinder)
       make_cylinder(tria, g, p.element_size);
+    else if (g.shape == PlatenShape::cone)
+      make_cylinder(tria, g, p.element_size, 1); // one refinement puts a vertex on the axis
     else
       make_box(tria, g, p.element_size);
 
@@ -216,15 +272,16 @@ namespace fem
           else
             face->set_boundary_id(boundary_id::free_faces);
         }
-    if (g.shape == PlatenShape::jaw)
+    if (g.shape != PlatenShape::cylinder && g.shape != PlatenShape::box)
     {
-      // bend the contact face into the arc z_c + (R - sqrt(R^2 - x^2)) (away from the rock),
+      // bend the contact face into the tip profile z_c + rise(x) (jaw, disc cutter: the arc
+      // R - sqrt(R^2 - x^2); wedge: |x| / tan(alpha); cone: r / tan(alpha)), away from the rock,
       // fading linearly to zero at the loaded face, which stays flat; boundary ids were set on the
-      // flat box and are kept
-      const double R = g.jaw_radius;
+      // flat body and are kept
       GridTools::transform(
         [&](const Point<3> &q) {
-          const double rise  = R - std::sqrt(R * R - q[0] * q[0]);
+          const double r     = g.shape == PlatenShape::cone ? std::hypot(q[0], q[1]) : q[0];
+          const double rise  = tip_rise(g, r);
           const double share = above ? 1.0 - q[2] / g.thickness : q[2] / g.thickness;
           Point<3> out       = q;
           out[2] += (above ? 1.0 : -1.0) * rise * share;
@@ -464,37 +521,48 @@ namespace fem
     const double dt_mid      = 0.5 * (dt_prev + dt); // v lives at half steps
     const double t_half      = t + 0.5 * dt;
     const double vz_new      = velocity_z ? velocity_z(t_half) : 0.0;
+    const double vx_new      = velocity_x ? velocity_x(t_half) : 0.0;
     const std::size_t n_dofs = u.size();
+    // prescribed velocity of a loaded-face dof by component (y is held)
+    const double v_prescribed[3] = {vx_new, 0.0, vz_new};
 
     if (prm.model == PlatenModel::rigid)
     {
+      const double a_x    = (vx_new - rigid_vx) / dt_mid;
       const double a_z    = (vz_new - rigid_vz) / dt_mid;
       double f_contact[3] = {0, 0, 0};
       for (std::size_t i = 0; i < n_dofs; ++i)
         f_contact[i % 3] += f_ext[i];
       // frame force: M a = F_contact + R
-      reaction              = mass * a_z - f_contact[2];
+      reaction_xyz[0]       = mass * a_x - f_contact[0];
+      reaction_xyz[1]       = -f_contact[1];
+      reaction_xyz[2]       = mass * a_z - f_contact[2];
+      reaction              = reaction_xyz[2];
+      const double dux_new  = dt * vx_new;
       const double duz_new  = dt * vz_new;
-      const double duz_prev = du_prev[2]; // the body moves as one: every z dof alike
+      const double dux_prev = du_prev[0]; // the body moves as one: every x (z) dof alike
+      const double duz_prev = du_prev[2];
       double dw             = 0.0;
       for (std::size_t i = 0; i < n_dofs; ++i)
       {
-        const double du_new = (i % 3 == 2) ? duz_new : 0.0;
+        const double du_new = (i % 3 == 2) ? duz_new : (i % 3 == 0) ? dux_new : 0.0;
         dw += f_ext[i] * 0.5 * (du_prev[i] + du_new);
         u[i] += du_new;
-        v[i]       = (i % 3 == 2) ? vz_new : 0.0;
+        v[i]       = v_prescribed[i % 3];
         du_prev[i] = du_new;
       }
-      // the frame's z force works on the centred increment; it holds x and y (no work)
-      work += dw + reaction * 0.5 * (duz_prev + duz_new);
+      // the frame's x and z forces work on the centred increments; it holds y (no work)
+      work += dw + reaction_xyz[0] * 0.5 * (dux_prev + dux_new) +
+              reaction_xyz[2] * 0.5 * (duz_prev + duz_new);
       rigid_vz = vz_new;
+      rigid_vx = vx_new;
     }
     else
     {
       const double beta = prm.stiffness_damping;
       if (beta > 0.0)
         K.vmult(Kv, v);
-      double dw = 0.0, dd = 0.0, r = 0.0;
+      double dw = 0.0, dd = 0.0, r[3] = {0, 0, 0};
       for (std::size_t i = 0; i < n_dofs; ++i)
       {
         const double f = f_ext[i] - Ku[i] - (beta > 0.0 ? beta * Kv[i] : 0.0);
@@ -504,10 +572,9 @@ namespace fem
           v_new = v[i] + dt_mid * f / m;
         else
         {
-          v_new   = (i % 3 == 2) ? vz_new : 0.0;
+          v_new   = v_prescribed[i % 3];
           f_frame = m * (v_new - v[i]) / dt_mid - f; // m a = f + f_frame
-          if (i % 3 == 2)
-            r += f_frame;
+          r[i % 3] += f_frame;
         }
         const double du_new = dt * v_new;
         const double du_mid = 0.5 * (du_prev[i] + du_new);
@@ -518,7 +585,8 @@ namespace fem
         v[i]       = v_new;
         du_prev[i] = du_new;
       }
-      reaction = r;
+      reaction = r[2];
+      std::copy(r, r + 3, reaction_xyz);
       work += dw;
       dissipated += dd;
       // strain energy at t + dt/2, where the kinetic energy lives: 1/2 u(t+dt) . K u(t); with
@@ -548,6 +616,11 @@ namespace fem
       throw std::logic_error("fem::Platen::set_loaded_face_velocity: a free body (Parameters::"
                              "free_body) has no prescribed motion");
     impl_->velocity_z = std::move(velocity_z);
+  }
+
+  void Platen::set_loaded_face_velocity_x(std::function<double(double)> velocity_x)
+  {
+    impl_->velocity_x = std::move(velocity_x);
   }
 
   bool Platen::is_rigid() const
@@ -656,6 +729,10 @@ namespace fem
   double Platen::reaction_force() const
   {
     return impl_->reaction;
+  }
+  std::array<double, 3> Platen::reaction_force_vector() const
+  {
+    return {{impl_->reaction_xyz[0], impl_->reaction_xyz[1], impl_->reaction_xyz[2]}};
   }
   double Platen::compressive_force() const
   {
@@ -788,7 +865,10 @@ namespace fem
       im.strain_energy_mid = 0.5 * (im.u * im.Ku);
     }
     else
+    {
       im.rigid_vz = velocity.empty() ? 0.0 : velocity[2];
+      im.rigid_vx = velocity.empty() ? 0.0 : velocity[0];
+    }
     im.du_prev = 0.0;
     im.dt_prev = 0.0;
   }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -56,6 +58,18 @@ TEST(Output, SummaryJsonHasEveryKeyInPrefixedUnits)
   EXPECT_NE(j.find("\"quasi_static\": false"), std::string::npos) << j;
 }
 
+TEST(Output, SummaryJsonWritesTheExtraResultsOfATestType)
+{
+  coupling::Summary s;
+  s.test  = "linear-cutting";
+  s.extra = {{"mean_normal_force_kN", 12.5}, {"specific_energy_MJ_m3", std::nan("")}};
+  const std::string j = coupling::summary_json(s);
+  EXPECT_NE(j.find("\"mean_normal_force_kN\": 12.5,"), std::string::npos) << j;
+  // no chip, no specific energy: null, not a number JSON cannot hold
+  EXPECT_NE(j.find("\"specific_energy_MJ_m3\": null,"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"stop_reason\": "), std::string::npos) << j; // still the last key, valid JSON
+}
+
 TEST(Output, HistoryCsvColumnsAndUnits)
 {
   TempDir dir;
@@ -68,7 +82,7 @@ TEST(Output, HistoryCsvColumnsAndUnits)
   const std::string text = read(dir.path / "h.csv");
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "time_s,displacement_mm,force_kN,force_bottom_kN,stress_MPa,strain,axial_gauge_strain,radial_strain,kinetic_energy_J,"
-            "internal_energy_J,dissipated_energy_J,external_work_J,n_failed");
+            "internal_energy_J,dissipated_energy_J,external_work_J,n_failed,rolling_force_kN,side_force_kN");
   EXPECT_NE(text.find("\n0.001,0.2,100,0,50,"), std::string::npos) << text;
 }
 

@@ -21,6 +21,7 @@ namespace coupling
     double tensile_strength = 0.0;     ///< [Pa] tension cut-off; 0 = none (mohr-coulomb-cutoff)
     double hoek_brown_mi = 0.0;        ///< [-] Hoek-Brown m_i (hoek-brown)
     double ucs = 0.0;                  ///< [Pa] uniaxial strength sigma_ci (hoek-brown, reporting)
+    double bts = 0.0;                  ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
     double softening_strain = 2e-3;    ///< [-] plastic strain over which strength falls to residual
     double residual_fraction = 0.1;    ///< [-] residual strength / peak strength
   };
@@ -79,11 +80,31 @@ namespace coupling
     long stop_after_steps = 0; ///< stop with a checkpoint after this step (restart tests); 0 = no
   };
 
+  /// Indentation and linear cutting: the cutter (an FEM body; model and steel from PlatenParameters),
+  /// its path, and the rock block. Angles in degrees as users write them.
+  struct CutterParameters
+  {
+    std::string shape = "disc";     ///< wedge, cone, flat (cylindrical punch) or disc (CCS disc)
+    double tip_angle = 90.0;        ///< wedge / cone included angle [deg]
+    double tip_radius = 0.0;        ///< wedge / cone tip rounding radius [m]; 0 = sharp
+    double indenter_width = 0.02;   ///< wedge width across the tip, cone / punch diameter [m]
+    double wedge_length = 0.02;     ///< wedge tip length along y [m]
+    double disc_diameter = 0.4318;  ///< disc cutter diameter [m] (17 inch)
+    double tip_width = 0.0127;      ///< CCS tip width [m]
+    double penetration = 0.005;     ///< cutting: depth of cut; indentation: final depth [m]
+    double line_spacing = 0.075;    ///< spacing between cuts [m] (CSM estimate only: one pass is cut)
+    double speed = 4.0;             ///< cutting speed along x and indentation speed along -z [m/s]
+    double cut_length = 0.08;       ///< distance cut along x [m]
+    double block_length = 0.15;     ///< rock block along x (cutting direction) [m]
+    double block_width = 0.1;       ///< rock block along y [m]
+    double block_height = 0.05;     ///< rock block along z (depth) [m]
+  };
+
   /// One case: the test, the specimen, and the parts.
   struct CaseParameters
   {
     std::string name = "ucs";        ///< case name (default output folder results/<name>)
-    std::string test = "UCS";        ///< UCS, BTS or CTCS
+    std::string test = "UCS";        ///< UCS, BTS, CTCS, indentation or linear-cutting
     double diameter = 0.05;          ///< specimen diameter [m]
     double length = 0.1;             ///< UCS/CTCS: length; BTS: disc thickness [m]
     double confining_pressure = 0.0; ///< CTCS lateral pressure [Pa], compression positive
@@ -92,5 +113,6 @@ namespace coupling
     PlatenParameters platens;
     LoadingParameters loading;
     OutputParameters output;
+    CutterParameters cutter;         ///< indentation and linear-cutting only
   };
 } // namespace coupling

@@ -44,6 +44,12 @@ namespace coupling
     double friction_static  = 0.0; ///< Coulomb static coefficient [-]
     double friction_dynamic = 0.0; ///< Coulomb dynamic coefficient [-] (<= static)
     double radius           = 0.0; ///< particle contact radius: half the particle spacing [m]
+    /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
+    /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
+    /// convex body is the largest over its face planes), not the most penetrated one, which near
+    /// an apex is the far flank and would push the particle the wrong way. false: flat or
+    /// concave masters (platens, the BTS jaw), the most penetrated face.
+    bool convex_master = false;
   };
 
   /// Largest stable penalty stiffness for a particle of mass m_s against a node of mass m_m

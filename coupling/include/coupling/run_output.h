@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace coupling
@@ -26,6 +27,8 @@ namespace coupling
     double dissipated_energy = 0; ///< plastic + viscous + friction dissipation [J]
     double external_work = 0;    ///< work of the loading and confinement [J]
     double n_failed = 0;         ///< number of failed / fully damaged particles
+    double rolling_force = 0;    ///< cutting: force resisting the cutter's travel (+x motion) [N]
+    double side_force = 0;       ///< cutting / indentation: force on the cutter along y [N]
   };
 
   /// Particle fields at one instant, flat arrays: vectors as x0,y0,z0,x1,...; stress as the six
@@ -79,6 +82,9 @@ namespace coupling
     double strain_rate = 0;           ///< nominal strain rate used [1/s]
     double time_step = 0;             ///< SPH time step [s]
     std::string stop_reason;          ///< "post-peak drop", "end strain", ...
+    /// Further results of a test type, written to summary.json as they are named (units in the
+    /// name), e.g. {"mean_normal_force_kN", 12.3}; a NaN is written as null.
+    std::vector<std::pair<std::string, double>> extra;
   };
 
   /// The full state of a running case as named flat arrays of doubles (a checkpoint): with it, a

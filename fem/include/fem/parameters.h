@@ -18,8 +18,15 @@ namespace fem
   {
     cylinder, ///< disc of `diameter` and `thickness`, axis along z (UCS, CTCS)
     box,      ///< flat block `size_x` x `size_y` x `thickness` (BTS)
-    jaw       ///< ISRM curved loading jaw: the box with its contact face a circular arc of radius
+    jaw,      ///< ISRM curved loading jaw: the box with its contact face a circular arc of radius
               ///< `jaw_radius` about an axis along y (BTS; ISRM: 1.5 x the disc radius)
+    wedge,    ///< wedge indenter: the box with its contact face a V of half-angle `tip_half_angle`,
+              ///< the tip a line along y at x = center_x, z = contact_z
+    cone,     ///< conical indenter: the cylinder with its contact face a cone of half-angle
+              ///< `tip_half_angle`, the tip at (center_x, center_y, contact_z)
+    disc_cutter ///< constant-cross-section (CCS) disc cutter: the lowest segment of a disc of
+                ///< radius `cutter_radius`, axis along y, flat tip of width `size_y` (flanks not
+                ///< modelled), chord `size_x` along x; the tip line at x = center_x, z = contact_z
   };
 
   /// Which side of the contact plane z = contact_z the platen body lies on.
@@ -52,7 +59,12 @@ namespace fem
     double size_x     = 0.07;   ///< box extent along x [m]
     double size_y     = 0.04;   ///< box extent along y [m]
     double jaw_radius = 0.0375; ///< jaw: radius of the contact arc [m]; > size_x / 2
-    double thickness  = 0.02;   ///< extent along z [m]
+    double thickness  = 0.02;   ///< extent along z [m]; wedge, cone, disc_cutter: tip to loaded face
+    /// wedge, cone: angle between the axis (z) and a flank [rad] (0.5 x the included angle).
+    double tip_half_angle = 1.0471975511965976;
+    double cutter_radius  = 0.2159; ///< disc_cutter: disc radius [m] (17-inch cutter: 0.2159)
+    /// wedge, cone: radius of the rounded tip [m], tangent to the flanks; 0 = sharp.
+    double tip_radius = 0.0;
     double contact_z  = 0.0;    ///< z of the contact face [m]
     double center_x   = 0.0;    ///< [m]
     double center_y   = 0.0;    ///< [m]

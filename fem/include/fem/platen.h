@@ -22,6 +22,7 @@
 
 #include <fem/parameters.h>
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -63,6 +64,10 @@ namespace fem
     /// Prescribed z-velocity [m/s] of the loaded face as a function of time t [s]; evaluated at
     /// half steps. Default: fixed (zero). Rigid: the velocity of the whole body.
     void set_loaded_face_velocity(std::function<double(double)> velocity_z);
+    /// Prescribed x-velocity [m/s] of the loaded face (rigid: of the whole body) as a function of
+    /// time t [s], for a cutter that translates. Default: zero. An elastic platen needs
+    /// LoadedFaceLateral::fixed for it to act (with `free` the loaded face's x is not prescribed).
+    void set_loaded_face_velocity_x(std::function<double(double)> velocity_x);
 
     // ---- sizes and constants ------------------------------------------------------------
     bool is_rigid() const;
@@ -101,6 +106,9 @@ namespace fem
     /// z-force [N] that the frame applies to the platen at the loaded face, along +z, at the
     /// start of the last step: M a + K u + beta K v - f_ext summed over the prescribed z dofs.
     double reaction_force() const;
+    /// The full force [N] (x, y, z) that the frame applies to the platen at the loaded face at the
+    /// start of the last step (rigid: M a - contact forces; z component = reaction_force()).
+    std::array<double, 3> reaction_force_vector() const;
     /// reaction_force() signed so that pushing into the specimen is positive [N].
     double compressive_force() const;
     /// Mean z-displacement of the loaded face [m].
