@@ -648,6 +648,7 @@ namespace coupling
 
   namespace
   {
+    // the laboratory-test columns (the cutting columns rolling_force, side_force stay zero here)
     constexpr std::size_t history_width = 13;
     void append_row(std::vector<double> &out, const HistoryRow &r)
     {

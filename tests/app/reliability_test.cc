@@ -61,11 +61,11 @@ namespace
     }
   };
 
-  /// Bitwise equality of two histories (HistoryRow is 13 doubles, no padding).
+  /// Bitwise equality of two histories (HistoryRow is 15 doubles, no padding).
   ::testing::AssertionResult identical(const std::vector<coupling::HistoryRow> &a,
                                        const std::vector<coupling::HistoryRow> &b)
   {
-    static_assert(sizeof(coupling::HistoryRow) == 13 * sizeof(double));
+    static_assert(sizeof(coupling::HistoryRow) == 15 * sizeof(double));
     if (a.size() != b.size())
       return ::testing::AssertionFailure() << a.size() << " rows against " << b.size();
     for (std::size_t k = 0; k < a.size(); ++k)
