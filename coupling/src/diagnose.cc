@@ -422,16 +422,18 @@ namespace coupling::diagnose
       double norm = 0, strength = 0, curve = 0;
     };
 
-    Rms rms_of(const Study &s, const Surrogate &m, const std::vector<double> &p,
-               const std::vector<Datum> &data)
+    /// Noise-normalised RMS over all data, and plain RMS over strengths and curve points, of the
+    /// residuals predictions[i] - data[i].measured.
+    Rms rms_of(const Study &s, const std::vector<Datum> &data,
+               const std::vector<double> &predictions)
     {
       double a = 0, b = 0, c = 0;
       int nb = 0, nc = 0;
-      for (const auto &d : data)
+      for (std::size_t i = 0; i < data.size(); ++i)
       {
-        const double r = m.predict(d, p) - d.measured;
-        a += std::pow(r / s.noise(d), 2);
-        if (d.kind == Datum::strength)
+        const double r = predictions[i] - data[i].measured;
+        a += std::pow(r / s.noise(data[i]), 2);
+        if (data[i].kind == Datum::strength)
         {
           b += r * r;
           ++nb;
@@ -444,6 +446,16 @@ namespace coupling::diagnose
       }
       return {data.empty() ? 0 : std::sqrt(a / data.size()), nb ? std::sqrt(b / nb) : 0,
               nc ? std::sqrt(c / nc) : 0};
+    }
+
+    Rms rms_of(const Study &s, const Surrogate &m, const std::vector<double> &p,
+               const std::vector<Datum> &data)
+    {
+      std::vector<double> predictions;
+      predictions.reserve(data.size());
+      for (const auto &d : data)
+        predictions.push_back(m.predict(d, p));
+      return rms_of(s, data, predictions);
     }
 
     /// Leave-one-specimen-out (each strength row or curve is one fold) up to 20 specimens; beyond,
@@ -474,25 +486,7 @@ namespace coupling::diagnose
           pred_all.push_back(model.predict(d, p));
         }
       }
-      double a = 0, b = 0, c = 0;
-      int nb = 0, nc = 0;
-      for (std::size_t i = 0; i < out_all.size(); ++i)
-      {
-        const double r = pred_all[i] - out_all[i].measured;
-        a += std::pow(r / s.noise(out_all[i]), 2);
-        if (out_all[i].kind == Datum::strength)
-        {
-          b += r * r;
-          ++nb;
-        }
-        else
-        {
-          c += r * r;
-          ++nc;
-        }
-      }
-      return {out_all.empty() ? 0 : std::sqrt(a / out_all.size()), nb ? std::sqrt(b / nb) : 0,
-              nc ? std::sqrt(c / nc) : 0};
+      return rms_of(s, out_all, pred_all);
     }
 
     std::vector<FittedValue> fitted_values(const Study &s, const Fitted &f)

@@ -65,7 +65,6 @@ namespace coupling::diagnose
   {
     double bic_threshold   = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
     double coupled_spacing = 0;  ///< > 0: check baseline/extended with run_case at this dx [m]
-    bool verbose           = false;
   };
 
   /// A fitted parameter with its standard error (from the Jacobian at the optimum).
