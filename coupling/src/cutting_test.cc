@@ -1,5 +1,6 @@
 #include "cutting_test.h"
 
+#include "driver_common.h"
 #include "specimen_test.h"
 
 #include <coupling/run_case.h>
@@ -283,16 +284,7 @@ namespace coupling
   void CuttingTest::step()
   {
     body_->compute_forces();
-    ContactSurface s;
-    s.position = cutter_->contact_positions();
-    s.velocity = cutter_->contact_velocities();
-    s.mass     = cutter_->contact_masses();
-    if (cutter_->is_rigid())
-      std::fill(s.mass.begin(), s.mass.end(), 0.0);
-    const auto &f = cutter_->contact_faces();
-    s.faces.resize(f.size() / 4);
-    for (std::size_t q = 0; q < s.faces.size(); ++q)
-      s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+    const ContactSurface s = contact_surface(*cutter_);
 
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
@@ -392,39 +384,12 @@ namespace coupling
 
   ParticleSnapshot CuttingTest::particle_snapshot() const
   {
-    ParticleSnapshot s;
-    const unsigned int n = body_->n_particles();
-    s.n                  = n;
-    const auto &x        = body_->positions();
-    const auto &v        = body_->velocities();
-    const auto &x0       = body_->reference_positions();
-    for (unsigned int i = 0; i < n; ++i)
-      for (int d = 0; d < 3; ++d)
-      {
-        s.position.push_back(x[i][d]);
-        s.velocity.push_back(v[i][d]);
-        s.displacement.push_back(x[i][d] - x0[i][d]);
-      }
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const auto &t = body_->stress3(i);
-      s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
-      s.plastic_strain.push_back(body_->plastic_strain(i));
-      s.damage.push_back(body_->damage(i));
-    }
-    return s;
+    return coupling::particle_snapshot(*body_);
   }
 
   std::vector<MeshSnapshot> CuttingTest::mesh_snapshots() const
   {
-    const fem::MeshSnapshot f = cutter_->mesh_snapshot();
-    MeshSnapshot m;
-    m.name         = "cutter";
-    m.position     = f.position;
-    m.displacement = f.displacement;
-    m.hexahedra    = f.hexahedra;
-    m.von_mises    = f.von_mises;
-    return {m};
+    return {mesh_snapshot("cutter", *cutter_)};
   }
 
   Summary CuttingTest::run(RunObserver &observer)

@@ -1,6 +1,7 @@
 #include "specimen_test.h"
 
 #include "cutting_test.h"
+#include "driver_common.h"
 
 #include <coupling/curve_analysis.h>
 #include <coupling/run_case.h>
@@ -397,20 +398,7 @@ namespace coupling
                                   std::min(1.0, time_ / plan_.confinement_time));
 
     // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
-    auto surface = [](const fem::Platen &pl) {
-      ContactSurface s;
-      s.position = pl.contact_positions();
-      s.velocity = pl.contact_velocities();
-      s.mass     = pl.contact_masses();
-      if (pl.is_rigid())
-        std::fill(s.mass.begin(), s.mass.end(), 0.0);
-      const auto &f = pl.contact_faces();
-      s.faces.resize(f.size() / 4);
-      for (std::size_t q = 0; q < s.faces.size(); ++q)
-        s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
-      return s;
-    };
-    const ContactSurface s_top = surface(*top_), s_bottom = surface(*bottom_);
+    const ContactSurface s_top = contact_surface(*top_), s_bottom = contact_surface(*bottom_);
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
     const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
@@ -751,46 +739,12 @@ namespace coupling
 
   ParticleSnapshot SpecimenTest::particle_snapshot() const
   {
-    ParticleSnapshot s;
-    const unsigned int n = body_->n_particles();
-    s.n                  = n;
-    const auto &x        = body_->positions();
-    const auto &v        = body_->velocities();
-    const auto &x0       = body_->reference_positions();
-    s.position.reserve(3 * n);
-    for (unsigned int i = 0; i < n; ++i)
-      for (int d = 0; d < 3; ++d)
-      {
-        s.position.push_back(x[i][d]);
-        s.velocity.push_back(v[i][d]);
-        s.displacement.push_back(x[i][d] - x0[i][d]);
-      }
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const auto &t = body_->stress3(i);
-      s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
-      s.plastic_strain.push_back(body_->plastic_strain(i));
-      s.damage.push_back(body_->damage(i));
-    }
-    return s;
+    return coupling::particle_snapshot(*body_);
   }
 
   std::vector<MeshSnapshot> SpecimenTest::mesh_snapshots() const
   {
-    std::vector<MeshSnapshot> out;
-    for (const auto &[name, platen] :
-         {std::pair{"platen_top", top_.get()}, std::pair{"platen_bottom", bottom_.get()}})
-    {
-      const fem::MeshSnapshot f = platen->mesh_snapshot();
-      MeshSnapshot m;
-      m.name         = name;
-      m.position     = f.position;
-      m.displacement = f.displacement;
-      m.hexahedra    = f.hexahedra;
-      m.von_mises    = f.von_mises;
-      out.push_back(std::move(m));
-    }
-    return out;
+    return {mesh_snapshot("platen_top", *top_), mesh_snapshot("platen_bottom", *bottom_)};
   }
 
   Summary SpecimenTest::run(RunObserver &observer, const StateArrays *resume)

@@ -75,7 +75,7 @@ TEST(Indentation, FlatPunchFollowsBoussinesqInSeriesWithThePenaltyLayer)
   // contact particles set the true contact radius to within half a spacing (a = 5 mm, dx = 2 mm)
   EXPECT_GT(ratio, 0.9);
   EXPECT_LT(ratio, 1.25);
-  // linear: the force at half the depth is half the end force (5 %: the sin^2 start-up ramp)
+  // linear: the force at half the depth is half the end force (10 %: the sin^2 start-up ramp)
   const HistoryRow *half = nullptr;
   for (const auto &r : keep.rows)
     if (!half && r.displacement >= 0.5 * depth)

@@ -3,6 +3,8 @@
 // stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_test.cc): contact
 // forces at the start of the step, SPH integrated with dt, the FEM body sub-cycled with dt/n and
 // the platen force held over the sub-steps, so that both sides receive the same impulse f dt.
+#include "../../coupling/src/driver_common.h"
+
 #include <coupling/contact.h>
 
 #include <fem/platen.h>
@@ -56,10 +58,6 @@ namespace coupling::testing
       cp.radius           = 0.5 * rock_->parameters().spacing;
       stiffness_          = cp.stiffness;
       contact_            = std::make_unique<PenaltyContact>(cp, rock_->n_particles());
-      const auto &f       = platen_->contact_faces();
-      surface_.faces.resize(f.size() / 4);
-      for (std::size_t q = 0; q < surface_.faces.size(); ++q)
-        surface_.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
       f_rock_.assign(3 * rock_->n_particles(), 0.0);
       f_platen_.assign(3 * platen_->n_contact_nodes(), 0.0);
     }
@@ -69,11 +67,7 @@ namespace coupling::testing
     void step(const std::function<void(sph::Body<3> &)> &extra = {})
     {
       rock_->compute_forces();
-      surface_.position = platen_->contact_positions();
-      surface_.velocity = platen_->contact_velocities();
-      surface_.mass     = platen_->contact_masses();
-      if (platen_->is_rigid())
-        std::fill(surface_.mass.begin(), surface_.mass.end(), 0.0);
+      surface_      = contact_surface(*platen_);
       const auto &x = rock_->positions();
       const auto &v = rock_->velocities();
       const ContactParticles particles{x.front().data(), v.front().data(), rock_->masses().data(),

@@ -1,0 +1,62 @@
+#include "driver_common.h"
+
+#include <fem/platen.h>
+#include <sph/body.h>
+
+#include <algorithm>
+
+namespace coupling
+{
+  ParticleSnapshot particle_snapshot(const sph::Body<3> &body)
+  {
+    ParticleSnapshot s;
+    const unsigned int n = body.n_particles();
+    s.n                  = n;
+    const auto &x        = body.positions();
+    const auto &v        = body.velocities();
+    const auto &x0       = body.reference_positions();
+    s.position.reserve(3 * n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d)
+      {
+        s.position.push_back(x[i][d]);
+        s.velocity.push_back(v[i][d]);
+        s.displacement.push_back(x[i][d] - x0[i][d]);
+      }
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const auto &t = body.stress3(i);
+      s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
+      s.plastic_strain.push_back(body.plastic_strain(i));
+      s.damage.push_back(body.damage(i));
+    }
+    return s;
+  }
+
+  MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen)
+  {
+    const fem::MeshSnapshot f = platen.mesh_snapshot();
+    MeshSnapshot m;
+    m.name         = name;
+    m.position     = f.position;
+    m.displacement = f.displacement;
+    m.hexahedra    = f.hexahedra;
+    m.von_mises    = f.von_mises;
+    return m;
+  }
+
+  ContactSurface contact_surface(const fem::Platen &platen)
+  {
+    ContactSurface s;
+    s.position = platen.contact_positions();
+    s.velocity = platen.contact_velocities();
+    s.mass     = platen.contact_masses();
+    if (platen.is_rigid())
+      std::fill(s.mass.begin(), s.mass.end(), 0.0);
+    const auto &f = platen.contact_faces();
+    s.faces.resize(f.size() / 4);
+    for (std::size_t q = 0; q < s.faces.size(); ++q)
+      s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+    return s;
+  }
+} // namespace coupling

@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// Helpers shared by the two drivers (SpecimenTest, CuttingTest): the solver state as output
+/// snapshots and an FEM body's contact face as the surface PenaltyContact sees. Internal to the
+/// coupling library.
+
+#include <coupling/contact.h>
+#include <coupling/run_output.h>
+
+#include <string>
+
+namespace sph
+{
+  template <int dim>
+  class Body;
+}
+
+namespace fem
+{
+  class Platen;
+}
+
+namespace coupling
+{
+  /// Positions, velocities, displacements, stress (Voigt order xx yy zz yz xz xy), plastic strain
+  /// and damage of every particle.
+  ParticleSnapshot particle_snapshot(const sph::Body<3> &body);
+
+  /// The deformed mesh of one platen or cutter, under the given name.
+  MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen);
+
+  /// FEM -> SPH: the contact-face nodes of a platen or cutter as the background particles,
+  /// mirrored unchanged (a rigid body's nodes with zero mass).
+  ContactSurface contact_surface(const fem::Platen &platen);
+} // namespace coupling
