@@ -187,6 +187,10 @@ namespace sph
     void pair_forces();
     void gather_forces();
     void loaded_face_forces();     // see add_loaded_face (in body_loaded_face.cc)
+    // calls f(name, field) for each array and scalar save_state/load_state carry as it is
+    // (body_state.cc); Self is Body or const Body
+    template <typename Self, typename F>
+    static void for_each_state_field(Self &self, const std::string &prefix, F &&f);
     Vector<dim> loaded_face_s(unsigned int i) const; // s_i of add_loaded_face
 
     Parameters             prm_;
