@@ -1,9 +1,9 @@
 /// @file
 /// Body<dim>::save_state / load_state: the run-time state of a body as named flat arrays, for
 /// checkpoints. Kept apart from body.cc so that the solver and its serialisation change
-/// independently; a field added to Body that changes during a run must be added here too (the
-/// restart test, which compares a restarted history with an uninterrupted one bitwise, fails
-/// otherwise).
+/// independently; a field added to Body that changes during a run must be added here too, to
+/// for_each_state_field unless it needs a conversion (the restart tests, which compare a restarted
+/// history with an uninterrupted one bitwise, fail otherwise).
 ///
 /// Layout: per-particle Eigen vectors and tensors as their `data()` order (column-major), one
 /// particle after the other; scalars as arrays of one.
@@ -60,27 +60,50 @@ namespace sph
       values                       = a;
     }
 
-    double scalar(const StateArrays &in, const std::string &name)
+    void pack(StateArrays &out, const std::string &name, const double value)
     {
-      return find(in, name, 1)[0];
+      out[name] = {value};
+    }
+
+    void unpack(const StateArrays &in, const std::string &name, double &value)
+    {
+      value = find(in, name, 1)[0];
     }
   } // namespace
 
   template <int dim>
+  template <typename Self, typename F>
+  void Body<dim>::for_each_state_field(Self &self, const std::string &prefix, F &&f)
+  {
+    f(prefix + "x", self.p_.x);
+    f(prefix + "v", self.p_.v);
+    f(prefix + "volume", self.p_.volume);
+    f(prefix + "density", self.p_.density);
+    f(prefix + "h", self.p_.h);
+    f(prefix + "stress", self.p_.stress);
+    f(prefix + "F", self.p_.F);
+    f(prefix + "L", self.p_.L);
+    f(prefix + "f_int", self.p_.f_int);
+    f(prefix + "f_ext", self.p_.f_ext);
+    f(prefix + "f_pressure", self.p_.f_pressure);
+    f(prefix + "prescribed", self.prescribed_);
+    f(prefix + "reaction", self.reaction_);
+    f(prefix + "stress_work", self.stress_work_);
+    f(prefix + "Q", self.Q_);
+    f(prefix + "F_prev", self.F_prev_);
+    f(prefix + "pressure", self.pressure_);
+    f(prefix + "dt_last", self.dt_last_);
+    f(prefix + "viscous", self.viscous_);
+    f(prefix + "hourglass", self.hourglass_);
+    f(prefix + "external", self.external_);
+  }
+
+  template <int dim>
   void Body<dim>::save_state(StateArrays &out, const std::string &prefix) const
   {
-    const std::size_t n = p_.size();
-    pack(out, prefix + "x", p_.x);
-    pack(out, prefix + "v", p_.v);
-    pack(out, prefix + "volume", p_.volume);
-    pack(out, prefix + "density", p_.density);
-    pack(out, prefix + "h", p_.h);
-    pack(out, prefix + "stress", p_.stress);
-    pack(out, prefix + "F", p_.F);
-    pack(out, prefix + "L", p_.L);
-    pack(out, prefix + "f_int", p_.f_int);
-    pack(out, prefix + "f_ext", p_.f_ext);
-    pack(out, prefix + "f_pressure", p_.f_pressure);
+    for_each_state_field(*this, prefix,
+                         [&out](const std::string &name, const auto &field) { pack(out, name, field); });
+    const std::size_t   n = p_.size();
     std::vector<double> plastic(n), damage(n), constrained(n);
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -91,52 +114,23 @@ namespace sph
     out[prefix + "plastic_strain"] = std::move(plastic);
     out[prefix + "damage"]         = std::move(damage);
     out[prefix + "constrained"]    = std::move(constrained);
-    pack(out, prefix + "prescribed", prescribed_);
-    pack(out, prefix + "reaction", reaction_);
-    pack(out, prefix + "stress_work", stress_work_);
-    pack(out, prefix + "Q", Q_);
-    pack(out, prefix + "F_prev", F_prev_);
-    out[prefix + "pressure"]  = {pressure_};
-    out[prefix + "dt_last"]   = {dt_last_};
-    out[prefix + "viscous"]   = {viscous_};
-    out[prefix + "hourglass"] = {hourglass_};
-    out[prefix + "external"]  = {external_};
   }
 
   template <int dim>
   void Body<dim>::load_state(const StateArrays &in, const std::string &prefix)
   {
-    const std::size_t n = p_.size();
-    unpack(in, prefix + "x", p_.x);
-    unpack(in, prefix + "v", p_.v);
-    unpack(in, prefix + "volume", p_.volume);
-    unpack(in, prefix + "density", p_.density);
-    unpack(in, prefix + "h", p_.h);
-    unpack(in, prefix + "stress", p_.stress);
-    unpack(in, prefix + "F", p_.F);
-    unpack(in, prefix + "L", p_.L);
-    unpack(in, prefix + "f_int", p_.f_int);
-    unpack(in, prefix + "f_ext", p_.f_ext);
-    unpack(in, prefix + "f_pressure", p_.f_pressure);
-    const auto &plastic = find(in, prefix + "plastic_strain", n);
-    const auto &damage  = find(in, prefix + "damage", n);
-    const auto &constr  = find(in, prefix + "constrained", n);
+    for_each_state_field(*this, prefix,
+                         [&in](const std::string &name, auto &field) { unpack(in, name, field); });
+    const std::size_t n       = p_.size();
+    const auto       &plastic = find(in, prefix + "plastic_strain", n);
+    const auto       &damage  = find(in, prefix + "damage", n);
+    const auto       &constr  = find(in, prefix + "constrained", n);
     for (std::size_t i = 0; i < n; ++i)
     {
       p_.history[i].plastic_strain = plastic[i];
       p_.history[i].damage         = damage[i];
       constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
     }
-    unpack(in, prefix + "prescribed", prescribed_);
-    unpack(in, prefix + "reaction", reaction_);
-    unpack(in, prefix + "stress_work", stress_work_);
-    unpack(in, prefix + "Q", Q_);
-    unpack(in, prefix + "F_prev", F_prev_);
-    pressure_  = scalar(in, prefix + "pressure");
-    dt_last_   = scalar(in, prefix + "dt_last");
-    viscous_   = scalar(in, prefix + "viscous");
-    hourglass_ = scalar(in, prefix + "hourglass");
-    external_  = scalar(in, prefix + "external");
   }
 
   template class Body<2>;

@@ -9,16 +9,6 @@ namespace
   using namespace sph;
   using namespace sph_test;
 
-  MaterialParameters basalt_elastic()
-  {
-    MaterialParameters m;
-    m.model          = RockModel::elastic;
-    m.density        = 2900;
-    m.youngs_modulus = 97.07e9;
-    m.poissons_ratio = 0.28;
-    return m;
-  }
-
   TEST(SphElasticCylinder, YoungsModulusAndPoissonsRatio)
   {
     // 50 x 100 mm cylinder at dx = D/20 = 2.5 mm (12.6k particles), FORM 8, frictionless rigid
@@ -29,8 +19,7 @@ namespace
     Parameters prm;
     prm.spacing            = 2.5e-3;
     const MaterialParameters m = basalt_elastic();
-    const double             c = std::sqrt(m.youngs_modulus * (1 - m.poissons_ratio) /
-                                ((1 + m.poissons_ratio) * (1 - 2 * m.poissons_ratio) * m.density));
+    const double             c = p_wave_speed(m);
     const AxialResult r = axial_test(prm, m, 0.05, 0.1, -1e-4, 10, 10, M_PI * c / 0.1);
     // compression: r.strain is the magnitude of the axial strain, r.radial > 0 (expansion)
     const double      E = r.stress / r.strain, nu = r.radial / r.strain;

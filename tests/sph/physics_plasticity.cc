@@ -17,19 +17,15 @@ namespace
     // closed-form strength; 1 % allows for the dynamic overshoot and the viscous stress.
     Parameters prm;
     prm.spacing = 2.5e-3;
-    MaterialParameters m;
+    MaterialParameters m = basalt_elastic();
     m.model             = RockModel::mohr_coulomb;
-    m.density           = 2900;
-    m.youngs_modulus    = 97.07e9;
-    m.poissons_ratio    = 0.28;
     m.cohesion          = 32.99e6;
     m.friction_angle    = 63.68 * M_PI / 180;
     m.dilation_angle    = 10.0 * M_PI / 180;
     m.softening_strain  = 2e-3;
     m.residual_fraction = 0.1;
     const double ucs = 2 * m.cohesion * std::cos(m.friction_angle) / (1 - std::sin(m.friction_angle));
-    const double c   = std::sqrt(m.youngs_modulus * (1 - m.poissons_ratio) /
-                               ((1 + m.poissons_ratio) * (1 - 2 * m.poissons_ratio) * m.density));
+    const double c   = p_wave_speed(m);
     const AxialResult r =
       axial_test(prm, m, 0.05, 0.1, -1.5 * ucs / m.youngs_modulus, 15, 0, M_PI * c / 0.1);
     std::cout << "peak " << r.peak_stress / 1e6 << " MPa, closed form " << ucs / 1e6

@@ -4,6 +4,22 @@
 
 namespace sph_test
 {
+  MaterialParameters basalt_elastic()
+  {
+    MaterialParameters m;
+    m.model          = RockModel::elastic;
+    m.density        = 2900;
+    m.youngs_modulus = 97.07e9;
+    m.poissons_ratio = 0.28;
+    return m;
+  }
+
+  double p_wave_speed(const MaterialParameters &m)
+  {
+    return std::sqrt(m.youngs_modulus * (1 - m.poissons_ratio) /
+                     ((1 + m.poissons_ratio) * (1 - 2 * m.poissons_ratio) * m.density));
+  }
+
   AxialResult axial_test(const Parameters &prm, const MaterialParameters &mat, const double D,
                          const double L, const double strain, const double ramp_transits,
                          const double hold_transits, const double damping)

@@ -20,6 +20,13 @@ namespace sph_test
     double kinetic_ratio = 0; ///< kinetic / internal energy at the end
   };
 
+  /// Elastic basalt (Group M1-like: rho = 2900 kg/m^3, E = 97.07 GPa, nu = 0.28), the base of the
+  /// cylinder tests; plastic tests set the model and strength on a copy.
+  MaterialParameters basalt_elastic();
+
+  /// P-wave speed sqrt(E (1 - nu) / ((1 + nu) (1 - 2 nu) rho)) of `mat` [m/s].
+  double p_wave_speed(const MaterialParameters &mat);
+
   /// Loads a cylinder of diameter D and length L (dx) axially between frictionless rigid walls
   /// (end layers: only the axial velocity prescribed) to `strain` (sign: - compression) over
   /// `ramp_transits` P-wave transits with a smooth velocity profile, with mass-proportional

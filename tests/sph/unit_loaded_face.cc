@@ -108,6 +108,20 @@ namespace
     CompressedCylinder c(false);
     EXPECT_THROW(c.body.add_loaded_face(Vector<3>::Zero()), std::invalid_argument);
   }
+
+  TEST(SphLoadedFace, OverlappingFacesAreRefused)
+  {
+    // a loaded face takes the particles within two kernel supports (4h = 24 mm here) of it: the
+    // same face declared twice, or the far face of a plate thinner than 8h, overlaps
+    CompressedCylinder c(false);
+    c.body.add_loaded_face(Vector<3>(0, 0, 1));
+    EXPECT_THROW(c.body.add_loaded_face(Vector<3>(0, 0, 1)), std::invalid_argument);
+    const Lattice<3> lat = make_block<3>(Vector<3>(0, 0, 0), Vector<3>(0.05, 0.05, 0.02), 0.005);
+    Body<3> plate(CompressedCylinder::numerics(), CompressedCylinder::rock(), lat.positions,
+                  lat.volumes);
+    plate.add_loaded_face(Vector<3>(0, 0, 1));
+    EXPECT_THROW(plate.add_loaded_face(Vector<3>(0, 0, -1)), std::invalid_argument);
+  }
 } // namespace
 
 namespace

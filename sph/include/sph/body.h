@@ -134,7 +134,8 @@ namespace sph
     /// corrections of a column sum to zero (momentum is kept exactly) and vanish inside; a
     /// uniform stress is then in equilibrium with a load on the outer layer alone. They are
     /// part of `pressure_forces()` and their work is counted as external work. Returns the
-    /// number of particles in the face's columns. Throws std::invalid_argument for |n| = 0.
+    /// number of particles in the face's columns. Throws std::invalid_argument for |n| = 0 (or
+    /// not finite) and when the face's columns overlap those of an earlier loaded face.
     unsigned int add_loaded_face(const Vector<dim> &n);
     /// The discrete area [m^(dim-1)] a uniform normal stress on a loaded face acts on through
     /// particle i: -n . sum_k s_k over i's column for the outer particle of a loaded-face column
@@ -186,6 +187,10 @@ namespace sph
     void pair_forces();
     void gather_forces();
     void loaded_face_forces();     // see add_loaded_face (in body_loaded_face.cc)
+    // calls f(name, field) for each array and scalar save_state/load_state carry as it is
+    // (body_state.cc); Self is Body or const Body
+    template <typename Self, typename F>
+    static void for_each_state_field(Self &self, const std::string &prefix, F &&f);
     Vector<dim> loaded_face_s(unsigned int i) const; // s_i of add_loaded_face
 
     Parameters             prm_;
