@@ -404,10 +404,7 @@ namespace coupling
       s.mass     = pl.contact_masses();
       if (pl.is_rigid())
         std::fill(s.mass.begin(), s.mass.end(), 0.0);
-      const auto &f = pl.contact_faces();
-      s.faces.resize(f.size() / 4);
-      for (std::size_t q = 0; q < s.faces.size(); ++q)
-        s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+      s.faces = quad_faces(pl.contact_faces());
       return s;
     };
     const ContactSurface s_top = surface(*top_), s_bottom = surface(*bottom_);

@@ -56,10 +56,7 @@ namespace coupling::testing
       cp.radius           = 0.5 * rock_->parameters().spacing;
       stiffness_          = cp.stiffness;
       contact_            = std::make_unique<PenaltyContact>(cp, rock_->n_particles());
-      const auto &f       = platen_->contact_faces();
-      surface_.faces.resize(f.size() / 4);
-      for (std::size_t q = 0; q < surface_.faces.size(); ++q)
-        surface_.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+      surface_.faces      = quad_faces(platen_->contact_faces());
       f_rock_.assign(3 * rock_->n_particles(), 0.0);
       f_platen_.assign(3 * platen_->n_contact_nodes(), 0.0);
     }
