@@ -53,10 +53,7 @@ namespace coupling
     s.mass     = platen.contact_masses();
     if (platen.is_rigid())
       std::fill(s.mass.begin(), s.mass.end(), 0.0);
-    const auto &f = platen.contact_faces();
-    s.faces.resize(f.size() / 4);
-    for (std::size_t q = 0; q < s.faces.size(); ++q)
-      s.faces[q] = {{f[4 * q], f[4 * q + 1], f[4 * q + 2], f[4 * q + 3]}};
+    s.faces = quad_faces(platen.contact_faces());
     return s;
   }
 } // namespace coupling

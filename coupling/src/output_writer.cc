@@ -455,26 +455,36 @@ namespace coupling
     }
   } // namespace
 
-  std::string plot_curve(const std::string &history_csv, const std::string &test, const std::string &png)
+  std::string run_plot_script(const std::string &script_name, const std::vector<std::string> &args,
+                              const std::string &png)
   {
     namespace fs = std::filesystem;
-    const std::string script = std::string(COSIM_SOURCE_DIR) + "/tools/plot_curve.py";
+    const std::string what   = fs::path(png).filename().string();
+    const std::string script = std::string(COSIM_SOURCE_DIR) + "/tools/" + script_name;
     if (!fs::exists(script))
-      return "no " + script + " (curve.png skipped)";
+      return "no " + script + " (" + what + " skipped)";
     std::string python = "python3";
     if (const char *env = std::getenv("COSIM_PYTHON"))
       python = env;
     else if (fs::exists("/usr/bin/python3"))
       python = "/usr/bin/python3"; // Debian's, where python3-matplotlib lives
     const std::string log = png + ".log";
-    const int status = run_program({python, script, history_csv, test, png}, log);
+    std::vector<std::string> argv = {python, script};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const int status = run_program(argv, log);
     std::string reason;
     if (status == 127 || status == -1)
-      reason = python + " not found (install python3 and python3-matplotlib; curve.png skipped)";
+      reason = python + " not found (install python3 and python3-matplotlib; " + what + " skipped)";
     else if (status != 0)
-      reason = first_line(log) + " (curve.png skipped)";
+      reason = first_line(log) + " (" + what + " skipped)";
     std::error_code ignored;
     fs::remove(log, ignored);
     return reason;
+  }
+
+  std::string plot_curve(const std::string &history_csv, const std::string &test,
+                         const std::string &png)
+  {
+    return run_plot_script("plot_curve.py", {history_csv, test, png}, png);
   }
 } // namespace coupling

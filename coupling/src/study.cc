@@ -14,8 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace coupling
 {
@@ -253,49 +251,9 @@ namespace coupling
     std::string plot_study(const fs::path &csv, const fs::path &png,
                            const std::vector<std::string> &columns)
     {
-      const std::string script = std::string(COSIM_SOURCE_DIR) + "/tools/plot_study.py";
-      if (!fs::exists(script))
-        return "no " + script + " (study.png skipped)";
-      std::string python = "python3";
-      if (const char *env = std::getenv("COSIM_PYTHON"))
-        python = env;
-      else if (fs::exists("/usr/bin/python3"))
-        python = "/usr/bin/python3";
-      std::vector<std::string> argv = {python, script, csv.string(), png.string()};
-      argv.insert(argv.end(), columns.begin(), columns.end());
-      const fs::path log = png.string() + ".log";
-      const pid_t pid    = fork();
-      if (pid < 0)
-        return "cannot start " + python + " (study.png skipped)";
-      if (pid == 0)
-      {
-        if (!std::freopen("/dev/null", "w", stdout) || !std::freopen(log.c_str(), "w", stderr))
-          _exit(126);
-        std::vector<char *> a;
-        for (auto &s : argv)
-          a.push_back(s.data());
-        a.push_back(nullptr);
-        execvp(a[0], a.data());
-        _exit(127);
-      }
-      int status = 0;
-      waitpid(pid, &status, 0);
-      std::string reason;
-      const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      if (code == 127)
-        reason = python + " not found (install python3-matplotlib; study.png skipped)";
-      else if (code != 0)
-      {
-        std::ifstream in(log);
-        std::string line, last;
-        while (std::getline(in, line))
-          if (!line.empty())
-            last = line;
-        reason = last + " (study.png skipped)";
-      }
-      std::error_code ignored;
-      fs::remove(log, ignored);
-      return reason;
+      std::vector<std::string> args = {csv.string(), png.string()};
+      args.insert(args.end(), columns.begin(), columns.end());
+      return run_plot_script("plot_study.py", args, png.string());
     }
   } // namespace
 

@@ -72,9 +72,7 @@ namespace
     s.position = platen.contact_positions();
     s.velocity.assign(s.position.size(), 0.0);
     s.mass.assign(platen.n_contact_nodes(), 0.0);
-    const auto &f4 = platen.contact_faces();
-    for (std::size_t q = 0; q < f4.size(); q += 4)
-      s.faces.push_back({{f4[q], f4[q + 1], f4[q + 2], f4[q + 3]}});
+    s.faces = quad_faces(platen.contact_faces());
     std::vector<double> x, v(3 * layer.size(), 0.0), m(layer.size(), 1.0);
     const double depth = 1e-6; // each particle pressed 1e-6 m into the face at k = 1 N/m
     for (const auto &p : layer)

@@ -48,7 +48,9 @@ TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
   // energy: the frame's work ends up as strain, kinetic and penalty energy. 5 %: central
   // differences keep a shadow energy, and the hourglass and viscous terms dissipate a little
   EXPECT_LT(s.energy_balance_error, 0.05);
-  // the two load cells agree once the specimen carries load (quasi-static loading)
+  // the two load cells agree once the specimen carries load (quasi-static loading). 0.1: a
+  // guard against a dynamic (wave-dominated) run, twice the driver's own quasi-static limit
+  // (Loading/Max force imbalance, default 0.05), so the test fails only on a gross loss of balance
   EXPECT_LT(s.max_force_imbalance, 0.1);
 }
 
@@ -71,5 +73,6 @@ TEST(CoupledUcs, MohrCoulombPeakIsTheClosedFormStrength)
   EXPECT_NEAR(s.peak_stress / ucs, 1.0, 0.015);
   // the load falls after the peak (softening): the run ends on the post-peak drop
   EXPECT_EQ(s.stop_reason, "post-peak drop");
+  // 0.1: as in the elastic test above, twice the driver's default quasi-static limit
   EXPECT_LT(s.max_force_imbalance, 0.1);
 }

@@ -29,6 +29,15 @@ namespace coupling
     std::size_t n_nodes() const { return mass.size(); }
   };
 
+  /// Faces from a flat list of 4 node indices per face (as fem::Platen::contact_faces() gives).
+  inline std::vector<std::array<unsigned int, 4>> quad_faces(const std::vector<unsigned int> &flat)
+  {
+    std::vector<std::array<unsigned int, 4>> faces(flat.size() / 4);
+    for (std::size_t q = 0; q < faces.size(); ++q)
+      faces[q] = {{flat[4 * q], flat[4 * q + 1], flat[4 * q + 2], flat[4 * q + 3]}};
+    return faces;
+  }
+
   /// The slave side: rock particles (flat arrays as above).
   struct ContactParticles
   {

@@ -56,6 +56,12 @@ namespace coupling
     std::unique_ptr<Impl> impl_;
   };
 
+  /// Runs tools/`script_name` with `args` under python3 ($COSIM_PYTHON if set), expected to write
+  /// `png`. Returns "" on success, else a one-line reason (python3 or matplotlib missing: the
+  /// script's last stderr line) ending in "(<png file name> skipped)".
+  std::string run_plot_script(const std::string &script_name, const std::vector<std::string> &args,
+                              const std::string &png);
+
   /// Runs tools/plot_curve.py on history.csv to make curve.png. Returns "" on success, else a
   /// one-line reason (python3 or matplotlib missing, script failed).
   std::string plot_curve(const std::string &history_csv, const std::string &test, const std::string &png);
