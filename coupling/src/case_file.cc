@@ -71,6 +71,9 @@ namespace coupling
       {"Rock", "UCS", Kind::optional_real, "", "", "uniaxial strength sigma_ci [Pa]; empty = from Rock/Group"},
       {"Rock", "Softening strain", Kind::real, "0.002", "", "plastic strain to residual strength [-]"},
       {"Rock", "Residual fraction", Kind::real, "0.1", "", "residual / peak strength [-]"},
+      {"Rock", "Strength scatter", Kind::real, "0", "",
+       "Weibull modulus m of a per-particle strength factor (mean 1) on c, tensile strength and Hoek-Brown s; 0 = homogeneous rock, else >= 1 (rock: about 5-20)"},
+      {"Rock", "Scatter seed", Kind::integer, "1", "", "seed of the strength scatter: the same seed, the same rock"},
 
       {"SPH", "Particle spacing", Kind::real, "0.0025", "", "lattice spacing dx [m]"},
       {"SPH", "FORM", Kind::selection, "8", "0|1|7|8",
@@ -727,6 +730,8 @@ namespace coupling
     rock.hoek_brown_mi = r.real("Rock/Hoek-Brown mi");
     rock.softening_strain = r.real("Rock/Softening strain");
     rock.residual_fraction = r.real("Rock/Residual fraction");
+    rock.strength_scatter = r.real("Rock/Strength scatter");
+    rock.scatter_seed = r.integer("Rock/Scatter seed");
 
     r.require(rock.density > 0 && rock.density < 30000, "Rock/Density", "must be in (0, 30000) kg/m^3");
     r.require(rock.youngs_modulus > 0 && rock.youngs_modulus < 1e13, "Rock/Youngs modulus",
@@ -750,6 +755,11 @@ namespace coupling
     }
     r.require(rock.softening_strain > 0 && rock.softening_strain < 1, "Rock/Softening strain", "must be in (0, 1)");
     r.require(rock.residual_fraction >= 0 && rock.residual_fraction <= 1, "Rock/Residual fraction", "must be in [0, 1]");
+    r.require(rock.strength_scatter == 0 || (rock.strength_scatter >= 1 && rock.strength_scatter <= 1000),
+              "Rock/Strength scatter", "must be 0 (homogeneous) or a Weibull modulus in [1, 1000]");
+    r.require(rock.strength_scatter == 0 || rock.model != "elastic", "Rock/Strength scatter",
+              "scatters strength, which Rock/Model = elastic does not have; set it to 0 or choose a plastic model");
+    r.require(rock.scatter_seed >= 0, "Rock/Scatter seed", "must be >= 0");
 
     // --- Platens
     PlatenParameters &pl = p.platens;

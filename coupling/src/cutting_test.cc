@@ -135,6 +135,7 @@ namespace coupling
     {
       throw InputError(e.what());
     }
+    apply_strength_scatter(*body_, prm_.rock, dx);
     volume0_ = lattice.volumes;
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a
     // block clamped in the cutting rig); the top face is free

@@ -2,11 +2,22 @@
 
 #include <fem/platen.h>
 #include <sph/body.h>
+#include <sph/strength_scatter.h>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace coupling
 {
+  void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, const double spacing)
+  {
+    if (rock.strength_scatter <= 0)
+      return;
+    body.set_strength_factors(sph::weibull_strength_factors<3>(
+      body.reference_positions(), spacing, rock.strength_scatter,
+      static_cast<std::uint64_t>(rock.scatter_seed)));
+  }
+
   ParticleSnapshot particle_snapshot(const sph::Body<3> &body)
   {
     ParticleSnapshot s;

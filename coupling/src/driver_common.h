@@ -4,6 +4,7 @@
 /// snapshots and an FEM body's contact face as the surface PenaltyContact sees. Internal to the
 /// coupling library.
 
+#include <coupling/case_parameters.h>
 #include <coupling/contact.h>
 #include <coupling/run_output.h>
 
@@ -25,6 +26,10 @@ namespace coupling
   /// Positions, velocities, displacements, stress (Voigt order xx yy zz yz xz xy), plastic strain
   /// and damage of every particle.
   ParticleSnapshot particle_snapshot(const sph::Body<3> &body);
+
+  /// Heterogeneous rock (Rock/Strength scatter > 0): gives every particle of `body`, built on a
+  /// lattice of spacing `spacing`, its Weibull strength factor; nothing for a homogeneous rock.
+  void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, double spacing);
 
   /// The deformed mesh of one platen or cutter, under the given name.
   MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen);

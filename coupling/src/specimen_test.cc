@@ -2,6 +2,7 @@
 
 #include "cutting_test.h"
 #include "driver_common.h"
+#include "failure_pattern.h"
 
 #include <coupling/curve_analysis.h>
 #include <coupling/run_case.h>
@@ -218,6 +219,9 @@ namespace coupling
     {
       throw InputError(e.what());
     }
+    // heterogeneous rock: a Weibull strength factor per particle (Rock/Strength scatter)
+    apply_strength_scatter(*body_, prm_.rock, dx);
+    failure_ = std::make_unique<FailureWatch>(*body_, bts_);
     // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
     if (!bts_ && prm_.sph.loaded_face_correction)
     {
@@ -690,6 +694,7 @@ namespace coupling
     for (const auto &r : rows_)
       append_row(history, r);
     out["driver.history"] = std::move(history);
+    out["driver.failure"] = failure_->state();
   }
 
   void SpecimenTest::load_state(const StateArrays &in)
@@ -732,6 +737,10 @@ namespace coupling
     armed_         = d[7] != 0.0;
     touching_      = d[11] != 0.0;
     touch_strain_  = d[12];
+    const auto f = in.find("driver.failure");
+    if (f == in.end() || f->second.size() != failure_->state().size())
+      throw InputError("checkpoint: no driver.failure array; a checkpoint of an older cosim?");
+    failure_->set_state(f->second);
     rows_.clear();
     for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
       rows_.push_back(row_at(h->second, k));
@@ -783,6 +792,7 @@ namespace coupling
                                  "above the stable limit");
         rows_.push_back(r);
         observer.history(r);
+        failure_->observe(*body_, r.stress);
         next_row_ += row_interval;
         const bool loading = time_ > plan_.confinement_time;
         // the load the specimen carries: mean of both load cells (the stress wave that crosses
@@ -929,6 +939,7 @@ namespace coupling
       s.energy_balance_error =
         r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
     }
+    failure_->report(*body_, s);
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
     s.wall_seconds =

@@ -25,6 +25,8 @@ namespace fem
 
 namespace coupling
 {
+  class FailureWatch;
+
   /// Quantities derived from the case before the run: the loading path and the stop criteria.
   struct LoadingPlan
   {
@@ -81,6 +83,7 @@ namespace coupling
     LoadingPlan plan_;
     bool bts_ = false, ctcs_ = false;
     std::unique_ptr<sph::Body<3>> body_;
+    std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
     std::unique_ptr<fem::Platen> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
     double true_area_ = 0, lattice_area_ = 0;

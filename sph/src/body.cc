@@ -258,6 +258,16 @@ namespace sph
   }
 
   template <int dim>
+  void Body<dim>::set_strength_factors(const std::vector<double> &factors)
+  {
+    require(factors.size() == p_.size(), "set_strength_factors: one factor per particle");
+    for (const double f : factors)
+      require(std::isfinite(f) && f > 0, "set_strength_factors: factors must be finite and > 0");
+    for (std::size_t i = 0; i < factors.size(); ++i)
+      p_.history[i].strength = factors[i];
+  }
+
+  template <int dim>
   void Body<dim>::release_all()
   {
     std::fill(constrained_.begin(), constrained_.end(), 0);

@@ -24,6 +24,8 @@ namespace coupling
     double bts = 0.0;                  ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
     double softening_strain = 2e-3;    ///< [-] plastic strain over which strength falls to residual
     double residual_fraction = 0.1;    ///< [-] residual strength / peak strength
+    double strength_scatter = 0.0;     ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
+    int scatter_seed = 1;              ///< seed of the strength scatter (same seed, same rock)
   };
 
   /// SPH numerics (names after LS-DYNA's *CONTROL_SPH / *SECTION_SPH).

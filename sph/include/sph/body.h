@@ -86,6 +86,13 @@ namespace sph
     double plastic_strain(unsigned int i) const { return p_.history[i].plastic_strain; }
     /// Damage of particle i in [0, 1].
     double damage(unsigned int i) const { return p_.history[i].damage; }
+    /// Sets each particle's strength relative to the rock's (cohesion, tensile strength and the
+    /// Hoek-Brown s are multiplied by it; 1 everywhere by default): a heterogeneous rock. Constant
+    /// during a run (not part of save_state: the caller sets it again before load_state). Throws
+    /// std::invalid_argument unless there is one finite positive factor per particle.
+    void set_strength_factors(const std::vector<double> &factors);
+    /// Particle i's strength factor (see set_strength_factors) [-].
+    double strength_factor(unsigned int i) const { return p_.history[i].strength; }
     /// The whole particle store (read only).
     const ParticleStore<dim> &particles() const { return p_; }
 

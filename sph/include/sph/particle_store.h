@@ -14,6 +14,7 @@ namespace sph
   {
     double plastic_strain = 0; ///< equivalent plastic strain sqrt(2/3 e_p:e_p), accumulated [-]
     double damage         = 0; ///< softening damage in [0, 1]; never decreases [-]
+    double strength       = 1; ///< the particle's strength relative to the rock's (scatter) [-]
   };
 
   /// All particle fields, one array per field, indexed by particle number.

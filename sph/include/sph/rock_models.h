@@ -227,7 +227,8 @@ namespace sph::rock
   }
 
   /// Implementation of the plastic models: `surface(s, factor)` returns s onto the yield surface
-  /// at strength factor `factor` (softening) and says whether it was plastic. The softening is
+  /// at strength factor `factor` (the particle's scatter factor old_state.strength times the
+  /// softening factor) and says whether it was plastic. The softening is
   /// implicit: the strength is that of the updated plastic strain, by fixed-point iteration.
   template <typename Surface>
   inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
@@ -243,7 +244,7 @@ namespace sph::rock
       Eigen::SelfAdjointEigenSolver<Tensor3> eig;
       eig.computeDirect(trial, Eigen::EigenvaluesOnly);
       s = Principal(eig.eigenvalues()[2], eig.eigenvalues()[1], eig.eigenvalues()[0]);
-      const double factor = strength_factor(old_state.damage, prm);
+      const double factor = old_state.strength * strength_factor(old_state.damage, prm);
       Principal    r      = s;
       const double scale  = 1e-9 * (s.cwiseAbs().maxCoeff() + prm.cohesion + prm.hb_sigma_ci);
       if (!surface(r, factor) || (r - s).cwiseAbs().maxCoeff() < scale)
@@ -257,7 +258,7 @@ namespace sph::rock
         const double damage = std::max(old_state.damage,
                                        damage_of(old_state.plastic_strain + dkappa, prm));
         s                   = s_trial;
-        surface(s, strength_factor(damage, prm));
+        surface(s, old_state.strength * strength_factor(damage, prm));
         const Principal ep = principal_compliance_times(s_trial - s, prm);
         const double    dk = std::sqrt(2.0 / 3.0 * ep.squaredNorm());
         const bool      converged = std::abs(dk - dkappa) <= 1e-13 * dk + 1e-300;
@@ -266,6 +267,7 @@ namespace sph::rock
           break;
       }
     StressUpdate out;
+    out.state                 = old_state;
     out.stress                = Q * s.asDiagonal() * Q.transpose();
     out.state.plastic_strain  = old_state.plastic_strain + dkappa;
     out.state.damage = std::max(old_state.damage, damage_of(out.state.plastic_strain, prm));
