@@ -332,6 +332,15 @@ namespace coupling
           if (!why.empty())
             std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
         }
+        const std::string &test = case_file.parameters.test;
+        if (summary && (test == "UCS" || test == "BTS" || test == "CTCS"))
+        {
+          const std::string png = (staging / "failure_pattern.png").string();
+          const std::string why =
+            run_plot_script("plot_failure.py", {(staging / "results.h5").string(), test, png}, png);
+          if (!why.empty())
+            std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
+        }
       };
       try
       {

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Pictures of where a UCS / CTCS cylinder or a BTS disc fails: damage in sections through the
+specimen (reference positions, one lattice layer thick), where the damage started (the first
+snapshot holding a damaged particle) and at the end of the run.
+
+usage: plot_failure.py RESULTS_H5 TEST OUT_PNG
+UCS/CTCS: the vertical sections x-z and y-z through the axis and the mid-height section, at the end;
+BTS: the disc plane (x-z, largest damage through the thickness) at the onset and at the end.
+Exit status 3 with one line on stderr when matplotlib, numpy or h5py is missing.
+"""
+import sys
+
+
+def layer(values, spacing):
+    """Mask of the particles in the one lattice layer nearest to 0 (on the + side)."""
+    import numpy as np
+
+    target = np.min(np.abs(values))
+    return np.abs(values - target) < 0.25 * spacing
+
+
+def grid(a, b, c, spacing):
+    """Values c at cell-centred (a, b) as an image (NaN outside the specimen), with its extent;
+    where several particles share a cell (a projection), the largest value."""
+    import numpy as np
+
+    ia = np.rint((a - a.min()) / spacing).astype(int)
+    ib = np.rint((b - b.min()) / spacing).astype(int)
+    img = np.full((ib.max() + 1, ia.max() + 1), -np.inf)
+    np.maximum.at(img, (ib, ia), c)
+    img[np.isinf(img)] = np.nan
+    h = 0.5 * spacing
+    extent = [(a.min() - h) * 1e3, (a.max() + h) * 1e3, (b.min() - h) * 1e3, (b.max() + h) * 1e3]
+    return img, extent
+
+
+def main(argv):
+    if len(argv) != 4:
+        print("usage: plot_failure.py RESULTS_H5 TEST OUT_PNG", file=sys.stderr)
+        return 2
+    path, test, png = argv[1], argv[2].upper(), argv[3]
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        import numpy as np
+        import h5py
+    except ImportError as e:
+        print(f"{e.name} is not installed (python3-matplotlib, python3-numpy, python3-h5py)",
+              file=sys.stderr)
+        return 3
+    with h5py.File(path, "r") as f:
+        snaps = f["snapshots"]
+        keys = sorted(snaps.keys())
+        if not keys:
+            print(f"{path}: no snapshots", file=sys.stderr)
+            return 2
+        x0 = snaps[keys[0]]["particles/position"][:] - snaps[keys[0]]["particles/displacement"][:]
+        damage = {k: snaps[k]["particles/damage"][:] for k in keys}
+        times = {k: snaps[k].attrs.get("time_s", float("nan")) for k in keys}
+    last = keys[-1]
+    onset = next((k for k in keys if np.any(damage[k] > 0)), None)
+    coords = np.unique(np.round(x0[:, 0], 9))
+    spacing = np.min(np.diff(coords))
+    centre = x0.mean(axis=0)
+    cmap = plt.get_cmap("inferno_r").copy()
+    cmap.set_bad("white")
+
+    def section(ax, mask, a, b, k, title, scale=1.0):
+        img, extent = grid(x0[mask, a], x0[mask, b], damage[k][mask] / scale, spacing)
+        im = ax.imshow(img, origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=1,
+                       interpolation="nearest")
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel("xyz"[a] + " [mm]")
+        ax.set_ylabel("xyz"[b] + " [mm]")
+        ax.set_aspect("equal")
+        return im
+
+    if test == "BTS":
+        # projected along the disc axis: the largest damage through the thickness (the first
+        # damage appears at the disc's flat faces, around the centre)
+        mid = np.ones(len(x0), dtype=bool)
+        # the onset is shown relative to its own largest damage (the first yield is small)
+        panels = [(last, "damage at the end", 1.0)]
+        if onset:
+            first = max(float(np.max(damage[onset])), 1e-12)
+            panels.insert(0, (onset, f"damage at onset / {first:.2g}", first))
+        fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4.2), dpi=150,
+                                 squeeze=False)
+        fig.subplots_adjust(wspace=0.35)
+        for ax, (k, what, scale) in zip(axes[0], panels):
+            im = section(ax, mid, 0, 2, k, f"{what}, t = {times[k] * 1e3:.3f} ms\n"
+                                           "largest through the thickness; load along z", scale)
+    else:
+        xz = layer(x0[:, 1] - centre[1], spacing)
+        yz = layer(x0[:, 0] - centre[0], spacing)
+        xy = layer(x0[:, 2] - centre[2], spacing)
+        fig, axes = plt.subplots(1, 3, figsize=(11, 5), dpi=150, squeeze=False,
+                                 gridspec_kw={"width_ratios": [1, 1, 1.6]})
+        fig.subplots_adjust(wspace=0.45)
+        t = f"t = {times[last] * 1e3:.3f} ms"
+        im = section(axes[0][0], xz, 0, 2, last, f"x-z section through the axis\n{t}")
+        section(axes[0][1], yz, 1, 2, last, f"y-z section through the axis\n{t}")
+        section(axes[0][2], xy, 0, 1, last, f"mid-height section\n{t}")
+    fig.colorbar(im, ax=list(axes[0]), shrink=0.8, label="damage (1 = residual strength)")
+    fig.suptitle(f"{test}: failure pattern ({path.rsplit('/', 2)[-2]})", fontsize=10)
+    fig.savefig(png, bbox_inches="tight")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
