@@ -8,6 +8,8 @@ UCS/CTCS: the vertical sections x-z and y-z through the axis and the mid-height 
 BTS: the disc plane (x-z, largest damage through the thickness) at the onset and at the end.
 Exit status 3 with one line on stderr when matplotlib, numpy or h5py is missing.
 """
+import json
+import os
 import sys
 
 
@@ -104,7 +106,14 @@ def main(argv):
         section(axes[0][1], yz, 1, 2, last, f"y-z section through the axis\n{t}")
         section(axes[0][2], xy, 0, 1, last, f"mid-height section\n{t}")
     fig.colorbar(im, ax=list(axes[0]), shrink=0.8, label="damage (1 = residual strength)")
-    fig.suptitle(f"{test}: failure pattern ({path.rsplit('/', 2)[-2]})", fontsize=10)
+    title = f"{test}: failure pattern"
+    summary = os.path.join(os.path.dirname(os.path.abspath(path)), "summary.json")
+    if os.path.exists(summary):
+        with open(summary) as f:
+            peak = json.load(f).get("peak_stress_MPa")
+        if isinstance(peak, (int, float)):
+            title += f", peak {peak:.1f} MPa"
+    fig.suptitle(title, fontsize=10)
     fig.savefig(png, bbox_inches="tight")
     return 0
 

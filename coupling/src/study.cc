@@ -282,7 +282,9 @@ namespace coupling
            "              youngs_modulus_GPa, platen_modulus_GPa, poissons_ratio, strain_at_peak,\n"
            "              displacement_at_peak_mm, n_particles, n_steps, wall_seconds,\n"
            "              max_kinetic_to_internal_energy, max_force_imbalance, quasi_static,\n"
-           "              stop_reason, status (ok / unstable)\n"
+           "              stop_reason, status (ok / unstable), then the test's further results\n"
+           "              as summary.json names them (failure pattern: failure_onset_*,\n"
+           "              damaged_volume_fraction, crack_alignment; cutting forces)\n"
            "  study.png   peak stress against the first varied key (one line per combination of "
            "the\n"
            "              others), and every run's curve (tools/plot_study.py)\n"
@@ -425,7 +427,20 @@ namespace coupling
              "kN,n_particles,"
              "n_steps,wall_seconds,max_kinetic_to_internal_energy,max_force_imbalance,quasi_static,"
              "stop_reason,"
-             "status\n";
+             "status";
+      // the test's own results (summary.json's further entries: failure pattern, cutting
+      // forces), named as the first finished run names them
+      std::vector<std::string> extra_columns;
+      for (const auto &run : runs)
+        if (run.status == 0)
+        {
+          for (const auto &[name, value] : run.summary.extra)
+            extra_columns.push_back(name);
+          break;
+        }
+      for (const auto &c : extra_columns)
+        csv << "," << cell(c);
+      csv << "\n";
       double sum_error = 0, max_error = 0;
       std::size_t n_ok = 0;
       for (const auto &run : runs)
@@ -451,12 +466,21 @@ namespace coupling
               << number(s.peak_force * 1e-3) << "," << s.n_particles << "," << s.n_steps << ","
               << number(s.wall_seconds, "%.2f") << "," << number(s.max_kinetic_to_internal_energy)
               << "," << number(s.max_force_imbalance) << "," << (s.quasi_static ? "true" : "false")
-              << "," << cell(s.stop_reason) << ",ok\n";
+              << "," << cell(s.stop_reason) << ",ok";
         }
         else
           csv << ",," << number(run.reference.measured * 1e-6) << ",,"
               << number(run.reference.envelope * 1e-6) << "," << cell(run.reference.description)
-              << ",,,,,,,,,,,,,,unstable\n";
+              << ",,,,,,,,,,,,,,unstable";
+        for (const auto &c : extra_columns)
+        {
+          csv << ",";
+          if (run.status == 0)
+            for (const auto &[name, value] : s.extra)
+              if (name == c)
+                csv << number(value);
+        }
+        csv << "\n";
       }
       write_text_file((staging / "study.csv").string(), csv.str());
       std::vector<std::string> plot_columns;
