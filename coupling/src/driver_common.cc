@@ -4,11 +4,49 @@
 #include <sph/body.h>
 #include <sph/strength_scatter.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cstdint>
 
 namespace coupling
 {
+  double non_affine_kinetic_energy(const sph::Body<3> &body)
+  {
+    const auto &x = body.positions();
+    const auto &v = body.velocities();
+    const auto &m = body.masses();
+    // normal equations of the fit v_d = c_d . (1, x, y, z), mass weighted, about the centre of
+    // mass (better conditioned)
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double mass            = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      centre += m[i] * Eigen::Vector3d(x[i][0], x[i][1], x[i][2]);
+      mass += m[i];
+    }
+    if (mass <= 0)
+      return 0;
+    centre /= mass;
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    Eigen::Matrix<double, 4, 3> b = Eigen::Matrix<double, 4, 3>::Zero();
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const Eigen::Vector4d phi(1, x[i][0] - centre[0], x[i][1] - centre[1], x[i][2] - centre[2]);
+      A += m[i] * phi * phi.transpose();
+      b += m[i] * phi * Eigen::RowVector3d(v[i][0], v[i][1], v[i][2]);
+    }
+    const Eigen::Matrix<double, 4, 3> c = A.ldlt().solve(b);
+    double energy                        = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      const Eigen::Vector4d phi(1, x[i][0] - centre[0], x[i][1] - centre[1], x[i][2] - centre[2]);
+      const Eigen::RowVector3d fit = phi.transpose() * c;
+      energy += 0.5 * m[i] * (Eigen::RowVector3d(v[i][0], v[i][1], v[i][2]) - fit).squaredNorm();
+    }
+    return energy;
+  }
+
   void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, const double spacing)
   {
     if (rock.strength_scatter <= 0)

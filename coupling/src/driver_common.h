@@ -31,6 +31,12 @@ namespace coupling
   /// lattice of spacing `spacing`, its Weibull strength factor; nothing for a homogeneous rock.
   void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, double spacing);
 
+  /// Kinetic energy of the body's motion other than a homogeneous deformation: of v - (a + B x),
+  /// with a, B the mass-weighted least-squares affine fit of the velocity field [J]. A specimen
+  /// loaded quasi-statically moves affinely (rigid motion plus a uniform strain rate), so what
+  /// is left are its waves and vibrations.
+  double non_affine_kinetic_energy(const sph::Body<3> &body);
+
   /// The deformed mesh of one platen or cutter, under the given name.
   MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen);
 

@@ -100,6 +100,9 @@ namespace coupling
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
     // run-loop state, members so that a checkpoint holds them
     std::vector<HistoryRow> rows_;
+    // per history row: the rock's non-affine kinetic energy and its elastic energy [J], for the
+    // quasi-static check (see non_affine_kinetic_energy)
+    std::vector<double> rock_kinetic_, rock_internal_;
     double next_row_ = 0, next_snap_ = 0, peak_force_ = 0;
     bool armed_ = false;
     bool touching_ = false;      // both platens have touched the specimen
