@@ -1,4 +1,5 @@
 // The only translation unit of the app that includes deal.II (ParameterHandler): keep it so.
+#include <coupling/calibrate.h>
 #include <coupling/case_file.h>
 #include <coupling/cli.h>
 #include <coupling/csv.h>
@@ -55,8 +56,8 @@ namespace coupling
       {"Rock", "Group", Kind::text, "M1", "", "material group looked up in the data folder (M1..M10)"},
       {"Rock", "Model", Kind::selection, "mohr-coulomb", "elastic|mohr-coulomb|mohr-coulomb-cutoff|hoek-brown",
        "constitutive model of the rock"},
-      {"Rock", "Strength parameters", Kind::selection, "calibrated", "calibrated|measured",
-       "c, phi from Table 4 (calibrated to UCS and BTS) or Table 3 (measured by CTCS, groups M8-M10)"},
+      {"Rock", "Strength parameters", Kind::selection, "calibrated", "calibrated|measured|brazilian",
+       "c, phi from Table 4 (calibrated to UCS and BTS), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian)"},
       {"Rock", "Data directory", Kind::text, "", "",
        "folder with table3_fitted_parameters.csv, table4_calibrated.csv; empty = cases/data"},
       {"Rock", "Density", Kind::real, "2900", "", "[kg/m^3] (not in the paper: a typical basalt value)"},
@@ -693,9 +694,19 @@ namespace coupling
                                names.push_back(g.group);
                              return names;
                            }()) + "; known groups: " + table.group_names() + " (" + data_directory + ")");
-    const bool measured = r.get("Rock/Strength parameters") == "measured";
+    const std::string strength_source = r.get("Rock/Strength parameters");
+    const bool measured = strength_source == "measured";
     std::optional<double> group_c, group_phi;
-    if (measured)
+    if (strength_source == "brazilian")
+    {
+      // the disc centre's stress state (3 BTS, -BTS) on the envelope instead of uniaxial tension
+      if (!(group->ucs > 4 * group->bts))
+        r.fail("Rock/Strength parameters", "brazilian needs UCS > 4 BTS (group " + rock.group + ")");
+      const MohrCoulombStrength b = calibrate_mohr_coulomb_brazilian(group->ucs, group->bts);
+      group_c = b.cohesion;
+      group_phi = b.friction_angle;
+    }
+    else if (measured)
     {
       if (!group->measured_cohesion)
         r.fail("Rock/Strength parameters", "group " + rock.group + " has no measured c, phi (Table 3); groups that have them: " +
@@ -838,7 +849,10 @@ namespace coupling
     std::ostringstream used;
     used << "# cosim: parameters used for case '" << p.name << "' (" << path << ")\n"
          << "# Rock values resolved from group " << rock.group << " ("
-         << (measured ? "measured c, phi: Table 3" : "calibrated c, phi: Table 4") << ") and explicit keys\n";
+         << (measured ? "measured c, phi: Table 3"
+                      : strength_source == "brazilian" ? "c, phi calibrated to UCS and BTS at the disc centre's stress state"
+                                                       : "calibrated c, phi: Table 4")
+         << ") and explicit keys\n";
     prm.print_parameters(used, dealii::ParameterHandler::PRM);
     result.used_parameters = used.str();
     return result;

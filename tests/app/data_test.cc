@@ -159,3 +159,27 @@ TEST(Calibrate, RefusesBtsNotBelowUcs)
   EXPECT_THROW(coupling::calibrate_mohr_coulomb(10, 10), std::invalid_argument);
   EXPECT_THROW(coupling::calibrate_mohr_coulomb(10, 0), std::invalid_argument);
 }
+
+TEST(Calibrate, BrazilianStatePutsTheDiscCentreOnTheEnvelope)
+{
+  // the centre of a Brazilian disc (plane elasticity): compression 3 BTS along the load, tension
+  // BTS across. With the --brazilian c, phi that state and uniaxial compression at the UCS lie
+  // on the envelope sigma_1 = UCS + N sigma_3 (compression +), to round-off
+  const double ucs = 282.18, bts = 15.43;
+  const auto s     = coupling::calibrate_mohr_coulomb_brazilian(ucs, bts);
+  EXPECT_NEAR(coupling::mohr_coulomb_ucs(s), ucs, 1e-12 * ucs);
+  const double sin_phi = std::sin(s.friction_angle * M_PI / 180);
+  const double n       = (1 + sin_phi) / (1 - sin_phi);
+  EXPECT_NEAR(3 * bts, ucs + n * (-bts), 1e-10 * ucs);
+  // with Eqs. 14-15 the same state is past the envelope: a disc splits below the BTS, at
+  // UCS BTS / (UCS + 3 BTS) = 13.26 MPa for M1 (the coupled runs converge to 13.5 at 1-1.25 mm)
+  const auto t          = coupling::calibrate_mohr_coulomb(ucs, bts);
+  const double sin_t    = std::sin(t.friction_angle * M_PI / 180);
+  const double n_t      = (1 + sin_t) / (1 - sin_t);
+  EXPECT_NEAR(coupling::mohr_coulomb_ucs(t) / (3 + n_t), ucs * bts / (ucs + 3 * bts), 1e-10 * ucs);
+  EXPECT_EQ(two_decimals(ucs * bts / (ucs + 3 * bts)), "13.26");
+  // M1: c 36.08 MPa, phi 61.31 deg (cosim calibrate --brazilian)
+  EXPECT_EQ(two_decimals(s.cohesion), "36.08");
+  EXPECT_EQ(two_decimals(s.friction_angle), "61.31");
+  EXPECT_THROW(coupling::calibrate_mohr_coulomb_brazilian(40, 10), std::invalid_argument);
+}
