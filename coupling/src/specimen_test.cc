@@ -314,15 +314,17 @@ namespace coupling
   {
     time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
     const double dt_sph = body_->stable_time_step() * time_step_scale_;
-    dt_                 = dt_sph;
+    // Penalty stiffness: a fraction s of the central-difference bound 4 m_eff / dt^2 at the rock's
+    // own step, for the lightest particle against the lightest contact node (rigid: the particle
+    // alone); the coupled step is then dt_sph / sqrt(1 + s), so that the rock's stiffness and the
+    // contact spring together stay inside the bound (coupled_time_step() gives the proof).
+    const double s = prm_.platens.contact_stiffness_scale;
+    dt_            = coupled_time_step(dt_sph, s);
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
     n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
 
-    // Penalty stiffness: a fraction of the central-difference bound 4 m_eff / dt^2 of the lightest
-    // particle against the lightest contact node (rigid: the particle alone). With the fraction
-    // s < 1 the contact alone is stable at dt / sqrt(s) > dt, i.e. the time-step limit counts it.
     const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
@@ -333,8 +335,7 @@ namespace coupling
         std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
     }
     ContactParameters cp;
-    cp.stiffness =
-      prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+    cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
     cp.radius                                = 0.5 * prm_.sph.spacing;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
