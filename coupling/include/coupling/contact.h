@@ -104,6 +104,8 @@ namespace coupling
     /// that a rigid platen loads each particle in proportion to the area it carries.
     void set_stiffness_factors(std::vector<double> factors) { stiffness_factor_ = std::move(factors); }
 
+    /// The penalty stiffness per particle before the stiffness factors [N/m].
+    double stiffness() const { return prm_.stiffness; }
     /// Sum of the normal forces of the last apply() [N] (>= 0).
     double normal_force() const { return normal_force_; }
     /// Penalty energy stored in the last apply() [J].
