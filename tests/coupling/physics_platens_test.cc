@@ -201,18 +201,21 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
             << platen_c << " m/N; without the contact layers " << without_layer / 1e9
             << " GPa), gauge modulus " << s.youngs_modulus / 1e9 << " GPa, exchange imbalance "
             << s.max_exchange_imbalance << ", steps " << s.n_steps << "\n";
-  // The issue asks for 3 % against the series stiffness; this model does not reach it (measured:
-  // 73.6 GPa against 61.5 GPa here, 80.9 against 76.1 GPa (+6 %) for the 50 x 100 mm specimen; the
-  // rock's half-spacing end layers, rigid under the contact radius, and the SPH rock's own
-  // stiffness at this resolution account for part of it, see the report). What holds: the
-  // apparent modulus lies between the series of rock and platens with and without the
-  // contact layers, and is well below the rock's, so the platens' compliance is seen
+  // The issue asks for 3 % against the series stiffness; this model does not reach it yet
+  // (measured with the coupled step counting the contact spring: 64.10 GPa against 61.51 GPa,
+  // +4.2 %). The rock is the part that is off: its gauges read 100.89 GPa through these elastic
+  // platens but 97.15 GPa (E within 0.1 %) through rigid ones on the same specimen, so the
+  // elastic platens stiffen the rock's own response by 3.9 % (cause not found: frictionless
+  // contact, quasi-static); with the rigid-platen gauge modulus as the rock's stiffness the
+  // series law still misses by 4.2 %. What holds: the apparent modulus lies between the series
+  // of rock and platens with and without the contact layers, and is well below the rock's, so
+  // the platens' compliance is seen
   EXPECT_LT(s.platen_modulus, without_layer);
   EXPECT_GT(s.platen_modulus, expected);
   // the platens really are compliant here: the check is not the rigid one in disguise
   EXPECT_GT(2.0 * platen_c / series_c, 0.05);
   // the rock itself reads about its modulus on the gauges through elastic platens (measured
-  // +12 % at 10 particles across, +2.7 % at 20: the coarse lattice is stiff)
+  // +3.9 % at 10 particles across, see above)
   EXPECT_NEAR(s.youngs_modulus / c.rock.youngs_modulus, 1.0, 0.15);
 }
 
