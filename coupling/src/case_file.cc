@@ -98,7 +98,7 @@ namespace coupling
       {"Platens", "Thickness", Kind::real, "0.02", "", "along the loading axis [m]"},
       {"Platens", "Diameter", Kind::real, "0", "", "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen"},
       {"Platens", "Element size", Kind::real, "0", "", "FEM element size [m]; 0 = from the particle spacing"},
-      {"Platens", "Contact stiffness scale", Kind::real, "0.1", "", "penalty stiffness / its stability bound [-]"},
+      {"Platens", "Contact stiffness scale", Kind::real, "0.1", "", "penalty stiffness / its stability bound at the rock step [-]; the step shrinks by sqrt(1 + s); 0.5 for stress waves"},
       {"Platens", "Shape", Kind::selection, "flat", "flat|jaw",
        "BTS: flat platens or ISRM curved loading jaws (UCS/CTCS: flat only)"},
       {"Platens", "Jaw radius", Kind::real, "0", "", "BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius (ISRM)"},

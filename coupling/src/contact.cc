@@ -49,6 +49,11 @@ namespace coupling
     return 4.0 * m_eff / (dt * dt);
   }
 
+  double coupled_time_step(double dt_alone, double stiffness_scale)
+  {
+    return dt_alone / std::sqrt(1.0 + stiffness_scale);
+  }
+
   PenaltyContact::PenaltyContact(const ContactParameters &parameters, std::size_t n_particles)
       : prm_(parameters)
       , friction_(n_particles)

@@ -259,10 +259,12 @@ namespace coupling
 
   void CuttingTest::choose_time_step()
   {
-    dt_                 = body_->stable_time_step();
+    // penalty stiffness and time step as in the laboratory driver: a fraction s of the
+    // central-difference bound at the rock's own step, the step shortened to count the contact
+    const double dt_sph = body_->stable_time_step();
+    dt_                 = coupled_time_step(dt_sph, prm_.platens.contact_stiffness_scale);
     const double dt_fem = cutter_->stable_time_step();
     n_substeps_         = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
-    // penalty stiffness as in the laboratory driver: a fraction of the central-difference bound
     const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
@@ -273,7 +275,7 @@ namespace coupling
     }
     ContactParameters cp;
     cp.stiffness =
-      prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+      prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_sph);
     contact_stiffness_ = cp.stiffness;
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
     cp.radius                                = 0.5 * prm_.sph.spacing;

@@ -87,6 +87,7 @@ namespace coupling
       << "  \"max_kinetic_to_internal_energy\": " << number(s.max_kinetic_to_internal_energy) << ",\n"
       << "  \"max_force_imbalance\": " << number(s.max_force_imbalance) << ",\n"
       << "  \"energy_balance_error\": " << number(s.energy_balance_error) << ",\n"
+      << "  \"max_exchange_imbalance\": " << number(s.max_exchange_imbalance) << ",\n"
       << "  \"quasi_static\": " << (s.quasi_static ? "true" : "false") << ",\n"
       << "  \"true_area_mm2\": " << number(s.true_area * 1e6) << ",\n"
       << "  \"lattice_area_mm2\": " << number(s.lattice_area * 1e6) << ",\n"

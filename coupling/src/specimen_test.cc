@@ -15,7 +15,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <sstream>
+#include <utility>
 
 namespace coupling
 {
@@ -281,14 +283,62 @@ namespace coupling
       g.shape    = fem::PlatenShape::cylinder;
       g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : prm_.diameter + 4.0 * dx;
     }
-    const double top_z = bts_ ? prm_.diameter : prm_.length;
+    double top_z = bts_ ? prm_.diameter : prm_.length, bottom_z = 0.0;
+    if (g.shape == fem::PlatenShape::jaw)
+    {
+      // the concave jaw bends towards the disc away from its apex, and its mesh chords the arc
+      // (the faces between nodes lie nearer the disc than the arc); the lattice's outer particles
+      // do not lie on the circle either. So place each jaw where its meshed face just touches the
+      // nearest particle (contact radius dx / 2), not at the disc's top and bottom, which would
+      // start with particles pressed into the jaw. The face height over x is read off a probe
+      // jaw with its apex at z = 0 (piecewise linear between the node columns; the arc runs
+      // along y unchanged).
+      g.side      = fem::PlatenSide::above;
+      g.contact_z = 0.0;
+      std::vector<std::pair<double, double>> profile; // (x, z) of the contact nodes, by x
+      try
+      {
+        const std::vector<double> xc = fem::Platen(g, fp).contact_positions();
+        for (std::size_t k = 0; k < xc.size(); k += 3)
+          profile.emplace_back(xc[k], xc[k + 2]);
+      }
+      catch (const std::invalid_argument &e)
+      {
+        throw InputError(std::string("Platens: ") + e.what());
+      }
+      std::sort(profile.begin(), profile.end());
+      // face height relative to the apex (<= 0) and the slope dz/dx of the face at x
+      auto face_at = [&](double x) -> std::pair<double, double> {
+        x       = std::clamp(x, profile.front().first, profile.back().first);
+        auto hi = std::lower_bound(profile.begin(), profile.end(), std::make_pair(x, -1e300));
+        if (hi == profile.begin())
+          ++hi;
+        auto lo = std::prev(hi);
+        while (lo != profile.begin() && lo->first >= hi->first)
+          --lo;
+        const double run   = hi->first - lo->first;
+        const double slope = run > 0 ? (hi->second - lo->second) / run : 0.0;
+        return {lo->second + slope * (x - lo->first), slope};
+      };
+      // the contact radius is measured along the face normal: a particle under a face of slope m
+      // needs a vertical clearance r_c sqrt(1 + m^2)
+      const double r_c = 0.5 * dx;
+      top_z = -1e300, bottom_z = 1e300;
+      for (const auto &p : body_->positions())
+      {
+        const auto [z, m]     = face_at(p[0]);
+        const double clearance = r_c * std::sqrt(1.0 + m * m);
+        top_z                  = std::max(top_z, p[2] + clearance - z);
+        bottom_z               = std::min(bottom_z, p[2] - clearance + z);
+      }
+    }
     try
     {
       g.side      = fem::PlatenSide::above;
       g.contact_z = top_z;
       top_        = std::make_unique<fem::Platen>(g, fp);
       g.side      = fem::PlatenSide::below;
-      g.contact_z = 0.0;
+      g.contact_z = bottom_z;
       bottom_     = std::make_unique<fem::Platen>(g, fp);
     }
     catch (const std::invalid_argument &e)
@@ -318,15 +368,37 @@ namespace coupling
   {
     time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
     const double dt_sph = body_->stable_time_step() * time_step_scale_;
-    dt_                 = dt_sph;
+    // loaded faces: each outer particle is pressed in proportion to the area it carries, so a
+    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas)
+    const auto &area = body_->loaded_face_areas();
+    std::vector<double> factor;
+    double largest_factor = 1.0;
+    if (!area.empty())
+    {
+      double sum = 0;
+      int count  = 0;
+      for (const double a : area)
+        if (a > 0)
+          sum += a, ++count;
+      factor.assign(area.size(), 1.0);
+      for (std::size_t i = 0; i < area.size(); ++i)
+        if (area[i] > 0)
+          factor[i] = area[i] * count / sum;
+      largest_factor = *std::max_element(factor.begin(), factor.end());
+    }
+
+    // Penalty stiffness: a fraction s of the central-difference bound 4 m_eff / dt^2 at the rock's
+    // own step, for the lightest particle against the lightest contact node (rigid: the particle
+    // alone). The coupled step is dt_sph / sqrt(1 + s f), f the largest stiffness factor of the
+    // loaded faces, so that the rock's stiffness and the stiffest contact spring together stay
+    // inside the bound (coupled_time_step() gives the proof).
+    const double s = prm_.platens.contact_stiffness_scale;
+    dt_            = coupled_time_step(dt_sph, s * largest_factor);
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
     n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
 
-    // Penalty stiffness: a fraction of the central-difference bound 4 m_eff / dt^2 of the lightest
-    // particle against the lightest contact node (rigid: the particle alone). With the fraction
-    // s < 1 the contact alone is stable at dt / sqrt(s) > dt, i.e. the time-step limit counts it.
     const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
@@ -337,26 +409,13 @@ namespace coupling
         std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
     }
     ContactParameters cp;
-    cp.stiffness =
-      prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_);
+    cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
     cp.radius                                = 0.5 * prm_.sph.spacing;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
-    // loaded faces: each outer particle is pressed in proportion to the area it carries, so a
-    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas)
-    const auto &area = body_->loaded_face_areas();
-    if (!area.empty())
+    if (!factor.empty())
     {
-      double sum = 0;
-      int count  = 0;
-      for (const double a : area)
-        if (a > 0)
-          sum += a, ++count;
-      std::vector<double> factor(area.size(), 1.0);
-      for (std::size_t i = 0; i < area.size(); ++i)
-        if (area[i] > 0)
-          factor[i] = area[i] * count / sum;
       contact_top_->set_stiffness_factors(factor);
       contact_bottom_->set_stiffness_factors(factor);
     }
@@ -946,6 +1005,8 @@ namespace coupling
     s.max_kinetic_to_internal_energy = max_ratio;
     s.max_force_imbalance            = max_imbalance;
     s.max_exchange_imbalance         = max_exchange_imbalance_;
+    // the penalty stiffness per particle before the loaded-face factors, for the series checks
+    s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
     s.max_displacement               = 0;
     for (const auto &r : rows)
       s.max_displacement = std::max(s.max_displacement, r.displacement);

@@ -274,17 +274,20 @@ namespace fem
         }
     if (g.shape != PlatenShape::cylinder && g.shape != PlatenShape::box)
     {
-      // bend the contact face into the tip profile z_c + rise(x) (jaw, disc cutter: the arc
-      // R - sqrt(R^2 - x^2); wedge: |x| / tan(alpha); cone: r / tan(alpha)), away from the rock,
-      // fading linearly to zero at the loaded face, which stays flat; boundary ids were set on the
-      // flat body and are kept
+      // bend the contact face into the tip profile z_c + rise(x) (disc cutter: the arc
+      // R - sqrt(R^2 - x^2); wedge: |x| / tan(alpha); cone: r / tan(alpha)), away from the rock:
+      // a cutter is convex towards the rock. The ISRM jaw is concave: it cradles the disc, so its
+      // face bends by the same arc towards the rock (a jaw radius above the disc radius keeps it
+      // clear of the disc but at the apex). The bend fades linearly to zero at the loaded face,
+      // which stays flat; boundary ids were set on the flat body and are kept
+      const double towards_rock = g.shape == PlatenShape::jaw ? -1.0 : 1.0;
       GridTools::transform(
         [&](const Point<3> &q) {
           const double r     = g.shape == PlatenShape::cone ? std::hypot(q[0], q[1]) : q[0];
           const double rise  = tip_rise(g, r);
           const double share = above ? 1.0 - q[2] / g.thickness : q[2] / g.thickness;
           Point<3> out       = q;
-          out[2] += (above ? 1.0 : -1.0) * rise * share;
+          out[2] += towards_rock * (above ? 1.0 : -1.0) * rise * share;
           return out;
         },
         tria);

@@ -44,11 +44,12 @@ TEST(Output, SummaryJsonHasEveryKeyInPrefixedUnits)
   s.youngs_modulus = 97e9;
   s.max_displacement = 0.3e-3;
   s.poissons_ratio = -1;
+  s.max_exchange_imbalance = 7.25e-16;
   const std::string j = coupling::summary_json(s);
   for (const auto *k : {"test", "n_particles", "n_steps", "wall_seconds", "peak_stress_MPa", "peak_force_kN",
                         "strain_at_peak", "youngs_modulus_GPa", "poissons_ratio", "max_displacement_mm",
                         "max_kinetic_to_internal_energy", "max_force_imbalance", "energy_balance_error",
-                        "quasi_static", "true_area_mm2", "lattice_area_mm2", "strain_rate_per_s", "time_step_s",
+                        "max_exchange_imbalance", "quasi_static", "true_area_mm2", "lattice_area_mm2", "strain_rate_per_s", "time_step_s",
                         "stop_reason"})
     EXPECT_NE(j.find(std::string("\"") + k + "\": "), std::string::npos) << k;
   EXPECT_NE(j.find("\"peak_stress_MPa\": 281.44,"), std::string::npos) << j;
@@ -56,6 +57,7 @@ TEST(Output, SummaryJsonHasEveryKeyInPrefixedUnits)
   EXPECT_NE(j.find("\"youngs_modulus_GPa\": 97,"), std::string::npos) << j;
   EXPECT_NE(j.find("\"poissons_ratio\": null"), std::string::npos) << j;
   EXPECT_NE(j.find("\"quasi_static\": false"), std::string::npos) << j;
+  EXPECT_NE(j.find("\"max_exchange_imbalance\": 7.25e-16,"), std::string::npos) << j;
 }
 
 TEST(Output, SummaryJsonWritesTheExtraResultsOfATestType)

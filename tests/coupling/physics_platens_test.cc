@@ -1,5 +1,7 @@
 // The coupled driver with elastic steel platens (issue 5): the forces exchanged each step cancel,
-// and the apparent modulus against the series stiffness of rock, contact layers and platens.
+// and the apparent modulus against the series stiffness of rock, contact layers and platens;
+// BTS with the ISRM curved jaws.
+#include <coupling/case_file.h>
 #include <coupling/contact.h>
 #include <coupling/run_case.h>
 
@@ -168,26 +170,24 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
   //  - rock: E A / L on the true section (the gauge modulus of the rigid-platen test is E within
   //    1 % on this section);
   //  - each contact layer: n_c penalty springs of stiffness k in parallel (k as the driver sets
-  //    it: 0.1 of the central-difference bound of the lightest particle against the lightest
-  //    contact node, at the run's time step);
+  //    it: the default fraction of the central-difference bound of the lightest particle against
+  //    the lightest contact node, at the rock's own time step);
   //  - each platen: its compliance under the particle layer from a static FEM-only solve.
   const auto lattice = sph::make_cylinder<3>(c.diameter, c.length, c.sph.spacing);
-  double z_min = 1e300, v_min = 1e300;
-  for (std::size_t i = 0; i < lattice.positions.size(); ++i)
-  {
-    z_min = std::min(z_min, lattice.positions[i][2]);
-    v_min = std::min(v_min, lattice.volumes[i]);
-  }
+  double z_min = 1e300;
+  for (const auto &p : lattice.positions)
+    z_min = std::min(z_min, p[2]);
   std::vector<sph::Vector<3>> layer;
   for (const auto &p : lattice.positions)
     if (std::abs(p[2] - z_min) < 1e-9)
       layer.push_back(p);
   const fem::Platen platen = bottom_platen(c);
-  const auto node_mass     = platen.contact_masses();
-  const double k =
-    c.platens.contact_stiffness_scale *
-    stable_contact_stiffness(c.rock.density * v_min,
-                             *std::min_element(node_mass.begin(), node_mass.end()), s.time_step);
+  // k as the driver sets it (summary.json: contact_stiffness_N_per_m)
+  double k = 0;
+  for (const auto &[key, value] : s.extra)
+    if (key == "contact_stiffness_N_per_m")
+      k = value;
+  ASSERT_GT(k, 0.0);
   const double area          = lattice.true_section_area;
   const double rock_c        = c.length / (c.rock.youngs_modulus * area);
   const double contact_c     = 1.0 / (layer.size() * k);
@@ -201,17 +201,48 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
             << platen_c << " m/N; without the contact layers " << without_layer / 1e9
             << " GPa), gauge modulus " << s.youngs_modulus / 1e9 << " GPa, exchange imbalance "
             << s.max_exchange_imbalance << ", steps " << s.n_steps << "\n";
-  // The issue asks for 3 % against the series stiffness; this model does not reach it (measured:
-  // 73.6 GPa against 61.5 GPa here, 80.9 against 76.1 GPa (+6 %) for the 50 x 100 mm specimen; the
-  // rock's half-spacing end layers, rigid under the contact radius, and the SPH rock's own
-  // stiffness at this resolution account for part of it, see the report). What holds: the
-  // apparent modulus lies between the series of rock and platens with and without the
-  // contact layers, and is well below the rock's, so the platens' compliance is seen
+  // The issue asks for 3 % against the series stiffness; this model does not reach it yet
+  // (measured with the coupled step counting the contact spring: 64.10 GPa against 61.51 GPa,
+  // +4.2 %). The rock is the part that is off: its gauges read 100.89 GPa through these elastic
+  // platens but 97.15 GPa (E within 0.1 %) through rigid ones on the same specimen, so the
+  // elastic platens stiffen the rock's own response by 3.9 % (cause not found: frictionless
+  // contact, quasi-static); with the rigid-platen gauge modulus as the rock's stiffness the
+  // series law still misses by 4.2 %. What holds: the apparent modulus lies between the series
+  // of rock and platens with and without the contact layers, and is well below the rock's, so
+  // the platens' compliance is seen
   EXPECT_LT(s.platen_modulus, without_layer);
   EXPECT_GT(s.platen_modulus, expected);
   // the platens really are compliant here: the check is not the rigid one in disguise
   EXPECT_GT(2.0 * platen_c / series_c, 0.05);
   // the rock itself reads about its modulus on the gauges through elastic platens (measured
-  // +12 % at 10 particles across, +2.7 % at 20: the coarse lattice is stiff)
+  // +3.9 % at 10 particles across, see above)
   EXPECT_NEAR(s.youngs_modulus / c.rock.youngs_modulus, 1.0, 0.15);
+}
+
+TEST(CoupledBts, CurvedJawsSplitTheDiscAboveTheFlatPlatenStrength)
+{
+  // cases/bts (M1, D 50 x 25 mm, 2.5 mm spacing) with flat platens and with the ISRM jaws
+  // (arc radius 1.5 disc radii, concave: they cradle the disc)
+  const std::string bts = std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts.prm";
+  CaseParameters flat   = read_case_file(bts, {}).parameters;
+  CaseParameters jaw    = read_case_file(bts, {"Platens/Shape=jaw"}).parameters;
+  flat.sph.n_threads = jaw.sph.n_threads = 1; // ctest runs two tests at a time on two cores
+  Keep rows_flat, rows_jaw;
+  const Summary f = run_case(flat, rows_flat);
+  const Summary j = run_case(jaw, rows_jaw);
+  std::cout << "[jaw] flat " << f.peak_stress / 1e6 << " MPa (" << f.stop_reason << "), jaw "
+            << j.peak_stress / 1e6 << " MPa (" << j.stop_reason << "), ratio "
+            << j.peak_stress / f.peak_stress << "\n";
+  // both split the disc: the load falls past its peak (before the jaws were bent the wrong way,
+  // convex, and the run ended at the end displacement at 7.9 MPa without a split)
+  EXPECT_EQ(f.stop_reason, "post-peak drop");
+  EXPECT_EQ(j.stop_reason, "post-peak drop");
+  // Hondros: a load spread over a contact arc 2 alpha lowers the tension at the disc centre by
+  // the factor (sin 2 alpha - alpha) / alpha at a given load (0.96 at alpha = 10 deg, 0.91 at
+  // 15 deg, the arcs of the ISRM jaw at failure), so the jaw's 2P/(pi D t) at the split lies
+  // above the flat platens' (a line contact at this resolution) by up to ~10 %; 15 % allows
+  // for the flat platens' own contact flattening (measured 1.121)
+  EXPECT_GT(j.peak_stress / f.peak_stress, 1.0);
+  EXPECT_LT(j.peak_stress / f.peak_stress, 1.15);
+  EXPECT_LT(j.max_exchange_imbalance, 1e-12);
 }

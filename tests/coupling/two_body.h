@@ -32,16 +32,17 @@ namespace coupling::testing
   class TwoBody
   {
   public:
-    /// contact_scale: the penalty stiffness as a fraction of its central-difference bound for the
-    /// lightest particle against the lightest contact node (rigid: the particle alone), as in
-    /// the driver.
+    /// contact_scale: the penalty stiffness as a fraction of its central-difference bound at the
+    /// rock's stable step for the lightest particle against the lightest contact node (rigid: the
+    /// particle alone), the step shortened by coupled_time_step(), as in the driver.
     TwoBody(std::unique_ptr<sph::Body<3>> rock, std::unique_ptr<fem::Platen> platen,
             double contact_scale, double friction_static = 0, double friction_dynamic = 0)
         : rock_(std::move(rock))
         , platen_(std::move(platen))
     {
-      dt_                 = rock_->stable_time_step();
-      const double dt_fem = platen_->stable_time_step();
+      const double dt_rock = rock_->stable_time_step();
+      dt_                  = coupled_time_step(dt_rock, contact_scale);
+      const double dt_fem  = platen_->stable_time_step();
       n_sub_              = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
       const auto &m       = rock_->masses();
       const double m_p    = *std::min_element(m.begin(), m.end());
@@ -52,7 +53,7 @@ namespace coupling::testing
         m_n           = *std::min_element(mn.begin(), mn.end());
       }
       ContactParameters cp;
-      cp.stiffness        = contact_scale * stable_contact_stiffness(m_p, m_n, dt_);
+      cp.stiffness        = contact_scale * stable_contact_stiffness(m_p, m_n, dt_rock);
       cp.friction_static  = friction_static;
       cp.friction_dynamic = friction_dynamic;
       cp.radius           = 0.5 * rock_->parameters().spacing;

@@ -356,20 +356,21 @@ TEST(FemMesh, JawContactFaceFollowsItsArc)
   fem::Parameters prm;
   prm.element_size = 0.0025;
   const fem::Platen jaw(g, prm);
-  // every contact node lies on the arc z = contact_z + R - sqrt(R^2 - x^2): the transform places
-  // them there exactly, so only round-off remains
+  // the jaw is concave, it cradles the disc: every contact node lies on the arc
+  // z = contact_z - (R - sqrt(R^2 - x^2)), bending down towards the disc away from the apex; the
+  // transform places them there exactly, so only round-off remains
   const auto x = jaw.contact_positions();
   ASSERT_GT(x.size(), 3u * 20);
   for (std::size_t i = 0; i < x.size(); i += 3)
   {
     const double R = g.jaw_radius;
-    EXPECT_NEAR(x[i + 2], g.contact_z + R - std::sqrt(R * R - x[i] * x[i]), 1e-12);
+    EXPECT_NEAR(x[i + 2], g.contact_z - (R - std::sqrt(R * R - x[i] * x[i])), 1e-12);
   }
-  // volume: the box less the circular segment swept along y; the mesh chords the arc, so it
-  // holds a little more than the true body: 1e-3 covers the chord error at 2.5 mm cells
+  // volume: the box plus the region between the flat face and the arc, swept along y; the mesh
+  // chords the arc: 1e-3 covers the chord error at 2.5 mm cells
   const double a = 0.5 * g.size_x, R = g.jaw_radius;
-  const double segment = 2.0 * a * R - (a * std::sqrt(R * R - a * a) + R * R * std::asin(a / R));
-  const double V       = g.size_x * g.size_y * g.thickness - segment * g.size_y;
+  const double bend_area = 2.0 * a * R - (a * std::sqrt(R * R - a * a) + R * R * std::asin(a / R));
+  const double V         = g.size_x * g.size_y * g.thickness + bend_area * g.size_y;
   EXPECT_NEAR(jaw.mesh_volume() / V, 1.0, 1e-3);
   // and the lumped mass keeps the mesh's mass exactly (round-off)
   EXPECT_NEAR(jaw.total_mass() / (prm.density * jaw.mesh_volume()), 1.0, 1e-10);

@@ -55,7 +55,9 @@ namespace coupling
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     double element_size = 0.0;    ///< FEM element size [m]; 0 = from the particle spacing
-    double contact_stiffness_scale = 0.1; ///< penalty stiffness / its stability bound [-]; 0.5 rings
+    /// penalty stiffness / its stability bound at the rock's own step [-]; the coupled step is
+    /// that step / sqrt(1 + scale) (coupling::coupled_time_step)
+    double contact_stiffness_scale = 0.1;
     std::string shape = "flat";   ///< BTS: flat platens or ISRM curved jaws (jaw)
     double jaw_radius = 0.0;      ///< BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius
   };

@@ -62,10 +62,24 @@ namespace coupling
   };
 
   /// Largest stable penalty stiffness for a particle of mass m_s against a node of mass m_m
-  /// (m_m = 0: rigid) under central differences with step dt: k < 4 m_eff / dt^2, where
-  /// m_eff = m_s m_m / (m_s + m_m). The particle's own SPH stiffness uses part of that budget, so
-  /// callers take a fraction of it.
+  /// (m_m = 0: rigid) under central differences with step dt, the spring alone:
+  /// k < 4 m_eff / dt^2, where m_eff = m_s m_m / (m_s + m_m). Callers take a fraction s of it
+  /// and shorten the step with coupled_time_step(): the particle's own SPH stiffness already uses
+  /// most of the budget at dt (up to 95 % of it at TSSFAC 0.9, measured), so a contact spring
+  /// added at the same dt can push the pair past the bound.
   double stable_contact_stiffness(double slave_mass, double master_mass, double dt);
+
+  /// The coupled time step when the penalty stiffness (normal and tangential stick spring alike)
+  /// is k = s * stable_contact_stiffness(m_s, m_m, dt_alone), dt_alone being the step at which
+  /// the bodies alone are stable: dt_alone / sqrt(1 + s).
+  /// Bound: central differences are stable while lambda_max dt^2 < 4, lambda_max the largest
+  /// eigenvalue of M^-1 K. The contact spring adds at most k / m_eff to it, the eigenvalue of the
+  /// particle-node pair alone; with lambda_body dt_alone^2 < 4 and k / m_eff = 4 s / dt_alone^2,
+  /// (lambda_body + k / m_eff) dt^2 < (4 + 4 s) / (1 + s) = 4 at dt = dt_alone / sqrt(1 + s).
+  /// Without this reduction a stuck block on a platen (TSSFAC 0.9, s = 0.1) grows a tangential
+  /// oscillation of the base particles that the friction springs feed (tests/coupling
+  /// physics_friction_test.cc).
+  double coupled_time_step(double dt_alone, double stiffness_scale);
 
   /// Per-particle friction history (the elastic tangential spring of regularised stick).
   struct FrictionState
@@ -90,6 +104,8 @@ namespace coupling
     /// that a rigid platen loads each particle in proportion to the area it carries.
     void set_stiffness_factors(std::vector<double> factors) { stiffness_factor_ = std::move(factors); }
 
+    /// The penalty stiffness per particle before the stiffness factors [N/m].
+    double stiffness() const { return prm_.stiffness; }
     /// Sum of the normal forces of the last apply() [N] (>= 0).
     double normal_force() const { return normal_force_; }
     /// Penalty energy stored in the last apply() [J].

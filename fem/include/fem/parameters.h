@@ -18,8 +18,9 @@ namespace fem
   {
     cylinder, ///< disc of `diameter` and `thickness`, axis along z (UCS, CTCS)
     box,      ///< flat block `size_x` x `size_y` x `thickness` (BTS)
-    jaw,      ///< ISRM curved loading jaw: the box with its contact face a circular arc of radius
-              ///< `jaw_radius` about an axis along y (BTS; ISRM: 1.5 x the disc radius)
+    jaw,      ///< ISRM curved loading jaw: the box with its contact face a concave circular arc
+              ///< of radius `jaw_radius` about an axis along y, cradling the disc (BTS; ISRM:
+              ///< 1.5 x the disc radius)
     wedge,    ///< wedge indenter: the box with its contact face a V of half-angle `tip_half_angle`,
               ///< the tip a line along y at x = center_x, z = contact_z
     cone,     ///< conical indenter: the cylinder with its contact face a cone of half-angle
