@@ -405,8 +405,7 @@ namespace sph
                   // first Piola-Kirchhoff P = J sigma F^{-T}
                   const Tensor<dim> P =
                     J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
-                  Q_[i] = cor ? Tensor<dim>(p_.volume0[i] * P * p_.L[i]) :
-                                Tensor<dim>(p_.volume0[i] * P);
+                  Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
                 }
             }
         }
@@ -446,7 +445,7 @@ namespace sph
             if (evolve_h)
               p_.h[i] *= std::exp(tr / dim);
             p_.F[i] = (Tensor<dim>::Identity() + grad_v * dt) * p_.F[i];
-            Q_[i]   = volume_next_[i] * p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
+            Q_[i]   = p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
           }
       },
       model_);
@@ -464,11 +463,13 @@ namespace sph
     const double      pa    = pressure_;
     const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
     // force on i of pair p = (i, j) (-force on j), with its viscous and hourglass powers
+    // (always inlined: called at two places, and a call per pair costs ~70 instructions)
     const auto pair_force = [&](const std::int32_t p, const int i, const int j, double &power,
-                                double &hg_power) {
+                                double &hg_power) __attribute__((always_inline)) {
       const Vector<dim> &gw = grad_w_[p];
       // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
-      Vector<dim>       f   = (V[j] * Q_[i] + V[i] * Q_[j]) * gw;
+      // (Q = P L without the volume: one sum of tensors and one product by V_i V_j per pair)
+      Vector<dim>       f   = (V[i] * V[j]) * ((Q_[i] + Q_[j]) * gw);
       const Vector<dim> xij = p_.x[i] - p_.x[j];
       const Vector<dim> vij = p_.v[i] - p_.v[j];
       const double      r2  = xij.squaredNorm();

@@ -213,7 +213,7 @@ namespace sph
     std::vector<std::vector<std::int32_t>> cross_;       // per thread: its pairs into later ranges
     std::vector<std::vector<double>>       cross_share_; // per thread: their shares of j (scratch)
     std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
-    std::vector<Tensor<dim>> Q_;          // per particle: V0 P L (TL) or V sigma L (UL)
+    std::vector<Tensor<dim>> Q_;          // per particle: P L (TL) or sigma L (UL) (L = I if off)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
     std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)
     std::vector<std::uint8_t> constrained_;
