@@ -226,6 +226,9 @@ namespace sph
     {
       Vector<dim>               normal; // outward unit normal of the face (reference)
       std::vector<unsigned int> members; // members[0] is the outer particle
+      // total Lagrangian: ds_k = -(n.s_k) n of each member (reference configuration, constant;
+      // members[0]'s entry unused); empty in updated Lagrangian, where s_k changes every step
+      std::vector<Vector<dim>> ds;
     };
     std::vector<FaceColumn> face_columns_;
     std::vector<double>     face_area_; // per particle: its column's loaded area (outer only)
