@@ -175,7 +175,6 @@ namespace sph
     find_pairs<dim>(p_.x, 2.0 * h_max, pairs_);
     const std::size_t n_p = pairs_.n_pairs();
     grad_w_.resize(n_p);
-    pair_force_.resize(n_p);
     const KernelType kernel = prm_.kernel;
     // total Lagrangian: pairs are built once, in the reference configuration, so the hourglass
     // factor hg V0_i V0_j W(|X_ij|) / |X_ij|^2 is a constant of the pair (cached pair geometry)
@@ -193,6 +192,37 @@ namespace sph
             const double W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
             hg_factor_[p] = X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
           }
+      }
+    partition_pairs();
+  }
+
+  template <int dim>
+  void Body<dim>::partition_pairs()
+  {
+    const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
+    pair_begin_.assign(n + 1, 0);
+    for (std::size_t p = 0; p < n_p; ++p)
+      ++pair_begin_[pairs_.first[p] + 1];
+    for (std::size_t i = 0; i < n; ++i)
+      pair_begin_[i + 1] += pair_begin_[i];
+    const int T = n_threads_;
+    range_begin_.assign(T + 1, static_cast<std::int32_t>(n));
+    range_begin_[0] = 0;
+    for (int t = 1; t < T; ++t)
+      range_begin_[t] = static_cast<std::int32_t>(
+        std::lower_bound(pair_begin_.begin(), pair_begin_.end(),
+                         static_cast<std::int32_t>(n_p * t / T)) -
+        pair_begin_.begin());
+    cross_.assign(T, {});
+    cross_share_.assign(T, {});
+    for (int t = 0; t < T; ++t)
+      {
+        const std::int32_t e = range_begin_[t + 1];
+        for (std::int32_t p = pair_begin_[range_begin_[t]]; p < pair_begin_[e]; ++p)
+          if (pairs_.second[p] >= e)
+            cross_[t].push_back(p);
+        // room for the larger share: a dim x dim tensor (F sums) or a force and two powers
+        cross_share_[t].resize(cross_[t].size() * std::max(dim * dim, dim + 2));
       }
   }
 
@@ -285,36 +315,110 @@ namespace sph
   template <int dim>
   void Body<dim>::update_stress_total_lagrangian()
   {
-    const std::size_t n   = p_.size();
-    const bool        cor = corrected();
+    // F_i = A_i L_i^T, A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij: the pair (i, j) adds
+    // V0_j d (x) g to A_i and -V0_i (-d) (x) g to A_j (d = x_j - x_i, g = grad_w_ of the pair).
+    // A_j is summed in p_.F[j] (set to zero first) until j's own pairs finish it; then j's stress
+    // is updated in the same pass (see pair_begin_ in body.h for the order of the terms).
+    const bool                      cor = corrected();
+    const std::vector<double>      &V0  = p_.volume0;
+    const std::vector<Vector<dim>> &x   = p_.x;
+    constexpr int                   dd  = dim * dim;
     std::visit(
       [&](const auto &model) {
-#pragma omp parallel for num_threads(n_threads_) schedule(static)
-        for (long i = 0; i < static_cast<long>(n); ++i)
-          {
-            const Tensor<dim> A = pair_gradient<dim>(pairs_, grad_w_, p_.volume0, p_.x, i);
-            const Tensor<dim> F = A * p_.L[i].transpose();
-            // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
-            const Tensor<dim> G = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
-            const Tensor3     g = embed<dim>(G);
-            const Tensor3     de = 0.5 * (g + g.transpose());
-            const Tensor3     R  = hughes_winget(0.5 * (g - g.transpose()));
-            const Tensor3     rotated = R * p_.stress[i] * R.transpose();
-            const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
-            const double J = F.determinant();
-            stress_work_[i] +=
-              p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
-            p_.stress[i]  = up.stress;
-            p_.history[i] = up.state;
-            F_prev_[i]    = F;
-            p_.F[i]       = F;
-            p_.volume[i]  = p_.volume0[i] * J;
-            p_.density[i] = p_.mass[i] / p_.volume[i];
-            // first Piola-Kirchhoff P = J sigma F^{-T}
-            const Tensor<dim> P =
-              J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
-            Q_[i] = cor ? Tensor<dim>(p_.volume0[i] * P * p_.L[i]) : Tensor<dim>(p_.volume0[i] * P);
-          }
+#pragma omp parallel num_threads(n_threads_)
+        {
+          const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
+          // shares of the second particle of the pairs that cross into a later range
+          for (int t = t0; t < n_threads_; t += nt)
+            {
+              double *share = cross_share_[t].data();
+              for (const std::int32_t p : cross_[t])
+                {
+                  const int          i = pairs_.first[p], j = pairs_.second[p];
+                  const Vector<dim> &g = grad_w_[p];
+                  for (int r = 0; r < dim; ++r)
+                    {
+                      const double d = -V0[i] * (x[i][r] - x[j][r]);
+                      for (int c = 0; c < dim; ++c)
+                        *share++ = d * g[c];
+                    }
+                }
+            }
+#pragma omp barrier
+          for (int t = t0; t < n_threads_; t += nt)
+            {
+              const std::int32_t b = range_begin_[t], e = range_begin_[t + 1];
+              for (std::int32_t i = b; i < e; ++i)
+                p_.F[i].setZero();
+              for (int s = 0; s < t; ++s)
+                for (std::size_t k = 0; k < cross_[s].size(); ++k)
+                  {
+                    const std::int32_t j = pairs_.second[cross_[s][k]];
+                    if (j < b || j >= e)
+                      continue;
+                    const double *share = &cross_share_[s][dd * k];
+                    for (int r = 0; r < dim; ++r)
+                      for (int c = 0; c < dim; ++c)
+                        p_.F[j](r, c) += share[r * dim + c];
+                  }
+              for (std::int32_t i = b; i < e; ++i)
+                {
+                  // A_i in registers: its terms as second particle are in p_.F[i] already
+                  double a[dim][dim];
+                  for (int r = 0; r < dim; ++r)
+                    for (int c = 0; c < dim; ++c)
+                      a[r][c] = p_.F[i](r, c);
+                  const Vector<dim> xi = x[i];
+                  for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+                    {
+                      const std::int32_t j  = pairs_.second[p];
+                      const Vector<dim> &g  = grad_w_[p];
+                      const Vector<dim> &xj = x[j];
+                      double             di[dim], dj[dim];
+                      for (int r = 0; r < dim; ++r)
+                        {
+                          di[r] = V0[j] * (xj[r] - xi[r]);
+                          dj[r] = -V0[i] * (xi[r] - xj[r]);
+                        }
+                      for (int r = 0; r < dim; ++r)
+                        for (int c = 0; c < dim; ++c)
+                          a[r][c] += di[r] * g[c];
+                      if (j < e) // else: added by j's owner (cross_)
+                        {
+                          Tensor<dim> &Aj = p_.F[j];
+                          for (int r = 0; r < dim; ++r)
+                            for (int c = 0; c < dim; ++c)
+                              Aj(r, c) += dj[r] * g[c];
+                        }
+                    }
+                  Tensor<dim> A;
+                  for (int r = 0; r < dim; ++r)
+                    for (int c = 0; c < dim; ++c)
+                      A(r, c) = a[r][c];
+                  const Tensor<dim> F = A * p_.L[i].transpose();
+                  // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
+                  const Tensor<dim> G  = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
+                  const Tensor3     gg = embed<dim>(G);
+                  const Tensor3     de = 0.5 * (gg + gg.transpose());
+                  const Tensor3     R  = hughes_winget(0.5 * (gg - gg.transpose()));
+                  const Tensor3     rotated = R * p_.stress[i] * R.transpose();
+                  const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
+                  const double J = F.determinant();
+                  stress_work_[i] +=
+                    p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
+                  p_.stress[i]  = up.stress;
+                  p_.history[i] = up.state;
+                  F_prev_[i]    = F;
+                  p_.F[i]       = F;
+                  p_.volume[i]  = p_.volume0[i] * J;
+                  p_.density[i] = p_.mass[i] / p_.volume[i];
+                  // first Piola-Kirchhoff P = J sigma F^{-T}
+                  const Tensor<dim> P =
+                    J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
+                  Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
+                }
+            }
+        }
       },
       model_);
   }
@@ -351,7 +455,7 @@ namespace sph
             if (evolve_h)
               p_.h[i] *= std::exp(tr / dim);
             p_.F[i] = (Tensor<dim>::Identity() + grad_v * dt) * p_.F[i];
-            Q_[i]   = volume_next_[i] * p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
+            Q_[i]   = p_.stress[i].template topLeftCorner<dim, dim>() * p_.L[i];
           }
       },
       model_);
@@ -363,67 +467,132 @@ namespace sph
   void Body<dim>::pair_forces()
   {
     const bool        tl    = total_lagrangian();
-    const std::size_t n_p   = pairs_.n_pairs();
     const double      alpha = prm_.av_alpha, beta = prm_.av_beta, c = wave_speed_;
     const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
     const bool        av    = alpha > 0 || beta > 0;
+    const double      pa    = pressure_;
     const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
-    // dissipation powers summed per static chunk, chunks added in thread order: deterministic
-    // for a given thread count, and no per-pair power arrays (16 bytes per pair saved)
+    // force on i of pair p = (i, j) (-force on j), with its viscous and hourglass powers
+    // (always inlined: called at two places, and a call per pair costs ~70 instructions)
+    const auto pair_force = [&](const std::int32_t p, const int i, const int j, double &power,
+                                double &hg_power) __attribute__((always_inline)) {
+      const Vector<dim> &gw = grad_w_[p];
+      // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
+      // (Q = P L without the volume: one sum of tensors and one product by V_i V_j per pair)
+      Vector<dim>       f   = (V[i] * V[j]) * ((Q_[i] + Q_[j]) * gw);
+      const Vector<dim> xij = p_.x[i] - p_.x[j];
+      const Vector<dim> vij = p_.v[i] - p_.v[j];
+      const double      r2  = xij.squaredNorm();
+      power = hg_power = 0;
+      if (av)
+        {
+          const double vr = vij.dot(xij);
+          if (vr < 0 && r2 > 0)
+            {
+              const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
+              const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
+              const double rho = 0.5 * (p_.density[i] + p_.density[j]);
+              const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
+              // grad W along the current pair direction, magnitude of the cached gradient:
+              // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
+              const Vector<dim> fv =
+                (p_.mass[i] * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2)) * xij;
+              f += fv;
+              power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
+            }
+        }
+      if (hg > 0 && r2 > 0)
+        {
+          // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
+          // delta = err . x / r is the separation error along the pair; the force magnitude
+          // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
+          // acts along x / r: g / r = factor * (err . x) / r^2, no square root needed
+          const Vector<dim> X        = p_.x0[j] - p_.x0[i];
+          const Vector<dim> x        = -xij;
+          const Vector<dim> err      = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
+          const double      g_over_r = hg_factor_[p] * err.dot(x) / r2;
+          const Vector<dim> fh       = -g_over_r * x; // on i; +g x/r on j
+          f += fh;
+          hg_power = fh.dot(vij);
+        }
+      return f;
+    };
+    // dissipation powers summed per range in pair order, ranges added in order: deterministic
+    // for a given thread count
     std::vector<double> partial(2 * n_threads_, 0.0);
+    constexpr int       share_size = dim + 2; // force, viscous power, hourglass power
 #pragma omp parallel num_threads(n_threads_)
     {
-      const int   t = omp_get_thread_num(), T = omp_get_num_threads();
-      std::size_t b, e;
-      chunk(n_p, t, T, b, e);
-      double sum_power = 0, sum_hg_power = 0;
-      for (long p = static_cast<long>(b); p < static_cast<long>(e); ++p)
+      const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
+      for (int t = t0; t < n_threads_; t += nt)
         {
-          const int i = pairs_.first[p], j = pairs_.second[p];
-          const Vector<dim> &gw = grad_w_[p];
-          // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
-          Vector<dim> f = (V[j] * Q_[i] + V[i] * Q_[j]) * gw;
-          double      power = 0, hg_power = 0;
-          const Vector<dim> xij = p_.x[i] - p_.x[j];
-          const Vector<dim> vij = p_.v[i] - p_.v[j];
-          const double      r2  = xij.squaredNorm();
-          if (av)
+          double *share = cross_share_[t].data();
+          for (const std::int32_t p : cross_[t])
             {
-              const double vr = vij.dot(xij);
-              if (vr < 0 && r2 > 0)
-                {
-                  const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
-                  const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
-                  const double rho = 0.5 * (p_.density[i] + p_.density[j]);
-                  const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
-                  // grad W along the current pair direction, magnitude of the cached gradient:
-                  // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
-                  const Vector<dim> fv =
-                    (p_.mass[i] * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2)) * xij;
-                  f += fv;
-                  power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
-                }
+              double            power, hg_power;
+              const Vector<dim> f =
+                pair_force(p, pairs_.first[p], pairs_.second[p], power, hg_power);
+              for (int d = 0; d < dim; ++d)
+                *share++ = f[d];
+              *share++ = power;
+              *share++ = hg_power;
             }
-          if (hg > 0 && r2 > 0)
-            {
-              // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
-              // delta = err . x / r is the separation error along the pair; the force magnitude
-              // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
-              // acts along x / r: g / r = factor * (err . x) / r^2, no square root needed
-              const Vector<dim> X   = p_.x0[j] - p_.x0[i];
-              const Vector<dim> x   = -xij;
-              const Vector<dim> err = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
-              const double      g_over_r = hg_factor_[p] * err.dot(x) / r2;
-              const Vector<dim> fh = -g_over_r * x; // on i; +g x/r on j
-              f += fh;
-              hg_power = fh.dot(vij);
-            }
-          pair_force_[p] = f;
-          sum_power += power;
-          sum_hg_power += hg_power;
         }
-      partial[2 * t]     = sum_power;
-      partial[2 * t + 1] = sum_hg_power;
+#pragma omp barrier
+      for (int t = t0; t < n_threads_; t += nt)
+        {
+          const std::int32_t b = range_begin_[t], e = range_begin_[t + 1];
+          for (std::int32_t i = b; i < e; ++i)
+            p_.f_int[i].setZero();
+          for (int s = 0; s < t; ++s)
+            for (std::size_t k = 0; k < cross_[s].size(); ++k)
+              {
+                const std::int32_t j = pairs_.second[cross_[s][k]];
+                if (j >= b && j < e)
+                  for (int d = 0; d < dim; ++d)
+                    p_.f_int[j][d] -= cross_share_[s][share_size * k + d];
+              }
+          double        sum_power = 0, sum_hg_power = 0;
+          const double *share     = cross_share_[t].data();
+          for (std::int32_t i = b; i < e; ++i)
+            {
+              Vector<dim> fi = p_.f_int[i]; // its terms as second particle so far
+              for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+                {
+                  const std::int32_t j = pairs_.second[p];
+                  if (j < e)
+                    {
+                      double            power, hg_power;
+                      const Vector<dim> f = pair_force(p, i, j, power, hg_power);
+                      fi += f;
+                      p_.f_int[j] -= f;
+                      sum_power += power;
+                      sum_hg_power += hg_power;
+                    }
+                  else // computed before the barrier (cross_), in this order
+                    {
+                      for (int d = 0; d < dim; ++d)
+                        fi[d] += share[d];
+                      sum_power += share[dim];
+                      sum_hg_power += share[dim + 1];
+                      share += share_size;
+                    }
+                }
+              p_.f_int[i] = fi;
+              if (pa != 0.0)
+                {
+                  const Vector<dim> a =
+                    tl ? Vector<dim>(p_.F[i].determinant() * p_.F[i].inverse().transpose() *
+                                     area0_[i]) :
+                         area0_[i];
+                  p_.f_pressure[i] = -pa * a;
+                }
+              else
+                p_.f_pressure[i].setZero();
+            }
+          partial[2 * t]     = sum_power;
+          partial[2 * t + 1] = sum_hg_power;
+        }
     }
     viscous_power_   = 0;
     hourglass_power_ = 0;
@@ -431,37 +600,6 @@ namespace sph
       {
         viscous_power_ += partial[2 * t];
         hourglass_power_ += partial[2 * t + 1];
-      }
-  }
-
-  template <int dim>
-  void Body<dim>::gather_forces()
-  {
-    const std::size_t n  = p_.size();
-    const bool        tl = total_lagrangian();
-    const double      pa = pressure_;
-#pragma omp parallel for num_threads(n_threads_) schedule(static)
-    for (long i = 0; i < static_cast<long>(n); ++i)
-      {
-        Vector<dim> f = Vector<dim>::Zero();
-        for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
-          {
-            const std::int32_t p = pairs_.incidence[k];
-            if (pairs_.first[p] == i)
-              f += pair_force_[p];
-            else
-              f -= pair_force_[p];
-          }
-        p_.f_int[i] = f;
-        if (pa != 0.0)
-          {
-            const Vector<dim> a =
-              tl ? Vector<dim>(p_.F[i].determinant() * p_.F[i].inverse().transpose() * area0_[i]) :
-                   area0_[i];
-            p_.f_pressure[i] = -pa * a;
-          }
-        else
-          p_.f_pressure[i].setZero();
       }
     if (!face_columns_.empty())
       loaded_face_forces();
@@ -475,7 +613,6 @@ namespace sph
     else
       update_stress_updated_lagrangian();
     pair_forces();
-    gather_forces();
   }
 
   template <int dim>

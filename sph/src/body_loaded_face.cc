@@ -69,6 +69,9 @@ namespace sph
         double area = 0;
         for (const unsigned int k : column.members)
           area -= n.dot(loaded_face_s(k)); // f = P s: s points into the body
+        if (total_lagrangian())
+          for (const unsigned int k : column.members)
+            column.ds.push_back(-n.dot(loaded_face_s(k)) * n);
         face_area_[column.members.front()] = area;
         face_columns_.push_back(std::move(column));
       }
@@ -130,7 +133,9 @@ namespace sph
         for (std::size_t m = 1; m < column.members.size(); ++m)
           {
             const int         k  = static_cast<int>(column.members[m]);
-            const Vector<dim> ds = -column.normal.dot(loaded_face_s(k)) * column.normal;
+            const Vector<dim> ds = column.ds.empty() ?
+                                     Vector<dim>(-column.normal.dot(loaded_face_s(k)) * column.normal) :
+                                     column.ds[m];
             p_.f_pressure[k] += P * ds;
             moved -= ds;
           }

@@ -1,9 +1,12 @@
 #include <sph/lattice.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sph
 {
@@ -42,6 +45,49 @@ namespace sph
       const double f = lattice.true_volume / sum;
       for (double &v : lattice.volumes)
         v *= f;
+    }
+
+    /// Reorders the particles along a Morton (Z-order) curve of their lattice cells (cell sizes
+    /// `step`): particles close in space get close indices, so the neighbours of a particle lie
+    /// within a few cache lines of it at any body size (lexicographic order puts the neighbours
+    /// one layer up about a layer's worth of particles away). Deterministic; cells are unique,
+    /// so the keys are.
+    template <int dim>
+    void order_along_morton_curve(Lattice<dim> &lattice, const Vector<dim> &step)
+    {
+      const std::size_t n = lattice.positions.size();
+      if (n == 0)
+        return;
+      Vector<dim> lo = lattice.positions[0];
+      for (const auto &x : lattice.positions)
+        lo = lo.cwiseMin(x);
+      constexpr int bits = 63 / dim; // 21 bits per coordinate in 3-D, 31 in 2-D
+      std::vector<std::pair<std::uint64_t, std::size_t>> keys(n);
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          std::uint64_t key = 0;
+          for (int d = 0; d < dim; ++d)
+            {
+              const auto c =
+                static_cast<std::uint64_t>(std::lround((lattice.positions[i][d] - lo[d]) / step[d]));
+              if (c >> bits)
+                throw std::invalid_argument("sph lattice: more than 2^" + std::to_string(bits) +
+                                            " cells along one axis; use a larger particle spacing");
+              for (int b = 0; b < bits; ++b)
+                key |= ((c >> b) & 1u) << (b * dim + d);
+            }
+          keys[i] = {key, i};
+        }
+      std::sort(keys.begin(), keys.end());
+      std::vector<Vector<dim>> positions(n);
+      std::vector<double>      volumes(n);
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          positions[k] = lattice.positions[keys[k].second];
+          volumes[k]   = lattice.volumes[keys[k].second];
+        }
+      lattice.positions.swap(positions);
+      lattice.volumes.swap(volumes);
     }
   } // namespace
 
@@ -98,6 +144,9 @@ namespace sph
         out.true_volume          = D * L;
       }
     scale_volumes(out);
+    Vector<dim> step = Vector<dim>::Constant(dx);
+    step[dim - 1]    = dz;
+    order_along_morton_curve(out, step);
     return out;
   }
 
@@ -161,6 +210,10 @@ namespace sph
         out.true_volume          = pi * R * R;
       }
     scale_volumes(out);
+    Vector<dim> step = Vector<dim>::Constant(dx);
+    if constexpr (dim == 3)
+      step[1] = dy;
+    order_along_morton_curve(out, step);
     return out;
   }
 
@@ -204,6 +257,7 @@ namespace sph
     out.true_section_area  = out.true_volume / (upper[dim - 1] - lower[dim - 1]);
     out.lattice_section_area = out.true_section_area;
     scale_volumes(out);
+    order_along_morton_curve(out, cell);
     return out;
   }
 

@@ -184,15 +184,15 @@ namespace sph
   private:
     bool total_lagrangian() const;
     bool corrected() const;
-    void build_pairs();            // pairs_, grad_w_ at the current positions
+    void build_pairs();            // pairs_, grad_w_ at the current positions, partition_pairs
+    void partition_pairs();        // pair_begin_, range_begin_, cross_ from pairs_
     void compute_correction();     // L from grad_w_
     void compute_area_vectors();   // area0_ from grad_w_
     // moves the normal parts of v in each loaded-face column onto its outer particle
     void lump_loaded_faces(std::vector<Vector<dim>> &v) const;
-    void update_stress_total_lagrangian();
+    void update_stress_total_lagrangian();   // one pass: sums for F over the pairs + stress
     void update_stress_updated_lagrangian();
-    void pair_forces();
-    void gather_forces();
+    void pair_forces();            // one pass: f_int and f_pressure (loaded faces after it)
     void loaded_face_forces();     // see add_loaded_face (in body_loaded_face.cc)
     // calls f(name, field) for each array and scalar save_state/load_state carry as it is
     // (body_state.cc); Self is Body or const Body
@@ -207,9 +207,20 @@ namespace sph
     ParticleStore<dim>     p_;
     PairList               pairs_;
     std::vector<Vector<dim>> grad_w_;     // per pair: grad_i W_ij (reference config in TL)
-    std::vector<Vector<dim>> pair_force_; // per pair: force on first, -force on second
+    // The pair loops run over the pairs of each particle i as first (pairs_ is sorted by first):
+    // the share of i is summed in registers and that of the second particle j is added to j's
+    // sum in memory, so every pair is visited once per pass and no per-pair result is stored.
+    // Thread t owns the particles [range_begin_[t], range_begin_[t+1]) (balanced by pairs) and
+    // writes only their sums; a pair whose j lies in a later range (cross_[t], few: particles
+    // are in Morton order) has its share of j computed first and added by j's owner before
+    // its own pairs. Each sum thus receives its terms in ascending pair order, as a per-particle
+    // gather would: the results do not depend on the number of threads.
+    std::vector<std::int32_t>              pair_begin_;  // per particle: its first pair as first
+    std::vector<std::int32_t>              range_begin_; // per thread: its first particle
+    std::vector<std::vector<std::int32_t>> cross_;       // per thread: its pairs into later ranges
+    std::vector<std::vector<double>>       cross_share_; // per thread: their shares of j (scratch)
     std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
-    std::vector<Tensor<dim>> Q_;          // per particle: V0 P L (TL) or V sigma L (UL)
+    std::vector<Tensor<dim>> Q_;          // per particle: P L (TL) or sigma L (UL) (L = I if off)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
     std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)
     std::vector<std::uint8_t> constrained_;
@@ -222,6 +233,9 @@ namespace sph
     {
       Vector<dim>               normal; // outward unit normal of the face (reference)
       std::vector<unsigned int> members; // members[0] is the outer particle
+      // total Lagrangian: ds_k = -(n.s_k) n of each member (reference configuration, constant;
+      // members[0]'s entry unused); empty in updated Lagrangian, where s_k changes every step
+      std::vector<Vector<dim>> ds;
     };
     std::vector<FaceColumn> face_columns_;
     std::vector<double>     face_area_; // per particle: its column's loaded area (outer only)
