@@ -314,6 +314,12 @@ namespace coupling
     {
       if (released_[i] || body_->damage(i) < 1.0)
         continue;
+      // crushed but confined rock (mean stress compressive) still carries the cutter, as the
+      // crushed zone of the CSM model does; a failed particle that is no longer compressed has
+      // broken out: chip
+      const auto &sig = body_->stress3(i);
+      if ((sig(0, 0) + sig(1, 1) + sig(2, 2)) / 3.0 < 0.0)
+        continue;
       released_[i] = 1;
       changed      = true;
       ++n_released_;

@@ -77,9 +77,10 @@ namespace coupling
     void choose_time_step();
     /// Prescribed cutter velocity (x, z) [m/s] at time t [s].
     std::array<double, 2> cutter_velocity(double t) const;
-    /// Cutting: particles that failed (damage 1) leave the contact for good (stiffness factor 0):
-    /// they are chip, broken out of the groove, and no longer carry the cutter. Their penalty
-    /// energy is booked as dissipated (released_energy_).
+    /// Cutting: particles that failed (damage 1) and are no longer compressed (mean stress >= 0)
+    /// leave the contact for good (stiffness factor 0): they are chip, broken out of the groove.
+    /// Failed particles under compression stay: the confined crushed zone carries the cutter.
+    /// The released particles' penalty energy is booked as dissipated (released_energy_).
     void release_failed_particles();
     void step();
     HistoryRow measure();
