@@ -61,8 +61,33 @@ namespace coupling
       , particle_force_(n_particles)
   {}
 
+  void PenaltyContact::find_interior_edges(const ContactSurface &s)
+  {
+    if (s.faces == edge_faces_)
+      return;
+    edge_faces_ = s.faces;
+    // (smaller node, larger node, face, edge), sorted: an edge listed twice is shared
+    std::vector<std::array<unsigned int, 4>> e;
+    e.reserve(4 * s.faces.size());
+    for (std::size_t f = 0; f < s.faces.size(); ++f)
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        const unsigned int a = s.faces[f][k], b = s.faces[f][(k + 1) % 4];
+        e.push_back({std::min(a, b), std::max(a, b), unsigned(f), k});
+      }
+    std::sort(e.begin(), e.end());
+    interior_edge_.assign(s.faces.size(), {{false, false, false, false}});
+    for (std::size_t i = 0; i + 1 < e.size(); ++i)
+      if (e[i][0] == e[i + 1][0] && e[i][1] == e[i + 1][1])
+      {
+        interior_edge_[e[i][2]][e[i][3]]         = true;
+        interior_edge_[e[i + 1][2]][e[i + 1][3]] = true;
+      }
+  }
+
   void PenaltyContact::build_face_grid(const ContactSurface &s)
   {
+    find_interior_edges(s);
     const double inflate = 2.0 * prm_.radius;
     V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     double largest = 0;
@@ -161,8 +186,21 @@ namespace coupling
         if (std::abs(dx1) + std::abs(dx2) < 1e-13)
           break;
       }
-      if (std::abs(xi) > 1 + edge_tolerance || std::abs(eta) > 1 + edge_tolerance)
-        continue;
+      // outside the face: skipped, except on a convex master across an edge shared with another
+      // face (an apex or ridge line), where the particle takes the face's plane clamped to that
+      // edge (below): in the wedge of space between two faces' normals at a convex edge a particle
+      // projects onto neither face and would feel no force until the edge had passed its centre,
+      // then the full penalty at once (energy created from nothing)
+      const bool out_xi = std::abs(xi) > 1 + edge_tolerance, out_eta = std::abs(eta) > 1 + edge_tolerance;
+      if (out_xi || out_eta)
+      {
+        // quad edges 0: eta = -1, 1: xi = +1, 2: eta = +1, 3: xi = -1
+        const auto &inner = interior_edge_[f];
+        const bool ok     = prm_.convex_master && (!out_xi || inner[xi > 0 ? 1 : 3]) &&
+                        (!out_eta || inner[eta > 0 ? 2 : 0]);
+        if (!ok)
+          continue;
+      }
       xi           = std::clamp(xi, -1.0, 1.0);
       eta          = std::clamp(eta, -1.0, 1.0);
       const auto N = shape(xi, eta);
@@ -178,10 +216,17 @@ namespace coupling
         continue;
       for (double &v : n)
         v /= nn;
-      const double distance = dot(sub(p, xs), n);
+      const V3 r_clamped    = sub(p, xs);
+      // a face reached across an edge counts only within a particle diameter of that edge
+      if ((out_xi || out_eta) && dot(r_clamped, r_clamped) > 4.0 * prm_.radius * prm_.radius)
+        continue;
+      const double distance = dot(r_clamped, n);
       // a particle more than one diameter behind the face is not in contact with it (it belongs to
       // another face or has tunnelled, which the time-step bound prevents)
-      if (distance < -2.0 * prm_.radius || distance > prm_.radius)
+      // (a convex master keeps the faces the particle is clear of: the largest plane distance
+      // decides, and one face plane the particle is more than r in front of separates it from the
+      // whole body)
+      if (distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > prm_.radius))
         continue;
       const double gap = distance - prm_.radius;
       if (best.face < 0 || (prm_.convex_master ? gap > best.gap : gap < best.gap))

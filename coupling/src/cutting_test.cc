@@ -100,20 +100,22 @@ namespace coupling
     build_cutter();
     choose_time_step();
 
-    // the path: down to the penetration (from the depth where the tip meets the first particle,
-    // so that first contact falls in the start-up ramp), then (cutting) along x at that depth
-    const double v    = c.speed;
-    const double down = c.penetration - depth_;
-    ramp_down_        = 0.25 * down / v;
-    t_down_           = down / v + ramp_down_;
-    t_cut_start_      = t_down_;
-    t_end_            = t_down_;
+    // indentation: down to the penetration from the depth where the tip meets the first particle
+    // (first contact falls in the start-up ramp). Cutting: the disc starts outside the block's
+    // free entry face x = 0 with its tip already at the penetration depth and moves along +x at
+    // that depth (no plunge), as a linear cutting machine takes a cut across a block.
+    const double v = c.speed;
     if (cutting_)
     {
-      // a short dwell lets the indentation transient pass before the cut starts
-      t_cut_start_ = t_down_ + ramp_down_;
-      ramp_cut_    = 0.1 * c.cut_length / v;
-      t_end_       = t_cut_start_ + c.cut_length / v + ramp_cut_;
+      ramp_cut_ = 0.1 * c.cut_length / v;
+      t_end_    = c.cut_length / v + ramp_cut_;
+    }
+    else
+    {
+      const double down = c.penetration - depth_;
+      ramp_down_        = 0.25 * down / v;
+      t_down_           = down / v + ramp_down_;
+      t_end_            = t_down_;
     }
   }
 
@@ -138,12 +140,13 @@ namespace coupling
     apply_strength_scatter(*body_, prm_.rock, dx);
     volume0_ = lattice.volumes;
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a
-    // block clamped in the cutting rig); the top face is free
+    // block clamped in the rig); the top face is free, and so is the entry face x = 0 of a cut
     const auto &x0 = body_->reference_positions();
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
     {
       const auto &p    = x0[i];
-      const bool fixed = p[2] < lower[2] + dx || p[0] < lower[0] + dx || p[0] > upper[0] - dx ||
+      const bool entry = !cutting_ && p[0] < lower[0] + dx;
+      const bool fixed = p[2] < lower[2] + dx || entry || p[0] > upper[0] - dx ||
                          p[1] < lower[1] + dx || p[1] > upper[1] - dx;
       if (!fixed)
         continue;
@@ -152,6 +155,7 @@ namespace coupling
       ++n_fixed_;
     }
     force_on_particles_.assign(3 * body_->n_particles(), 0.0);
+    released_.assign(body_->n_particles(), 0);
     domain_size_ = 3.0 * std::max({c.block_length, c.block_width, c.block_height});
   }
 
@@ -213,9 +217,31 @@ namespace coupling
     // the body must be thicker than the rise of its tip profile (fem's check): Platens/Thickness,
     // or 1.6 x the rise where that is more
     g.thickness = std::max(g.thickness, 1.6 * rim_rise);
-    g.center_x  = cutting_ ? 0.5 * (c.block_length - c.cut_length) : 0.5 * c.block_length;
+    g.center_x  = 0.5 * c.block_length;
     g.center_y  = 0.0;
-    start_x_    = g.center_x;
+    if (cutting_)
+    {
+      // the disc's lowest point at the penetration depth, the front of its contact arc (sqrt(2 R
+      // p) ahead of that point) one particle spacing outside the entry face x = 0
+      const double R    = 0.5 * c.disc_diameter;
+      const double half = 0.5 * g.size_x;
+      g.center_x        = -std::sqrt(2.0 * R * c.penetration) - dx;
+      g.contact_z       = -c.penetration;
+      depth_            = c.penetration;
+      // the segment's front end must stay clear of the held far face at the end of the cut
+      const double front_end = g.center_x + c.cut_length + half;
+      if (!(front_end < c.block_length - 2.0 * dx))
+        throw InputError("Cutter/Cut length: the cutter's rim segment would reach " +
+                         std::to_string(front_end * 1e3) + " mm, into the held far end of the " +
+                         std::to_string(c.block_length * 1e3) +
+                         " mm block: lengthen the block or shorten the cut");
+      if (!(c.cut_length > 1.5 * (std::sqrt(2.0 * R * c.penetration) + dx)))
+        throw InputError("Cutter/Cut length: too short for the disc to enter the rock fully and "
+                         "cut on (at least 1.5 x (sqrt(2 R p) + spacing) = " +
+                         std::to_string(1.5e3 * (std::sqrt(2.0 * R * c.penetration) + dx)) +
+                         " mm)");
+    }
+    start_x_ = g.center_x;
     if (c.shape == "wedge" || c.shape == "cone")
     {
       // a sharp tip between lattice columns first meets a particle (contact radius r = dx/2, centre
@@ -284,6 +310,37 @@ namespace coupling
     contact_         = std::make_unique<PenaltyContact>(cp, body_->n_particles());
   }
 
+  void CuttingTest::release_failed_particles()
+  {
+    bool changed = false;
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+    {
+      if (released_[i] || body_->damage(i) < 1.0)
+        continue;
+      // crushed but confined rock (mean stress compressive) still carries the cutter, as the
+      // crushed zone of the CSM model does; a failed particle that is no longer compressed has
+      // broken out: chip
+      const auto &sig = body_->stress3(i);
+      if ((sig(0, 0) + sig(1, 1) + sig(2, 2)) / 3.0 < 0.0)
+        continue;
+      released_[i] = 1;
+      changed      = true;
+      ++n_released_;
+      // force_on_particles_ still holds this particle's contact force of the last step: its
+      // penalty (and stick-spring) energy |f|^2 / (2 k) leaves with the chip
+      double f2 = 0;
+      for (int d = 0; d < 3; ++d)
+        f2 += force_on_particles_[3 * i + d] * force_on_particles_[3 * i + d];
+      released_energy_ += 0.5 * f2 / contact_stiffness_;
+    }
+    if (!changed)
+      return;
+    std::vector<double> factor(released_.size());
+    for (std::size_t i = 0; i < factor.size(); ++i)
+      factor[i] = released_[i] ? 0.0 : 1.0;
+    contact_->set_stiffness_factors(std::move(factor));
+  }
+
   void CuttingTest::step()
   {
     body_->compute_forces();
@@ -293,6 +350,8 @@ namespace coupling
     const auto &v = body_->velocities();
     const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
                                      body_->n_particles()};
+    if (cutting_)
+      release_failed_particles();
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_cutter_.begin(), force_on_cutter_.end(), 0.0);
     n_in_contact_ = contact_->apply(particles, s, dt_, force_on_particles_, force_on_cutter_);
@@ -354,8 +413,8 @@ namespace coupling
     const sph::Energies e = body_->energies();
     r.kinetic_energy      = e.kinetic + cutter_->kinetic_energy();
     r.internal_energy     = e.internal + cutter_->strain_energy() + contact_->penalty_energy();
-    r.dissipated_energy =
-      e.dissipated() + contact_->friction_dissipation() + cutter_->damping_dissipation();
+    r.dissipated_energy = e.dissipated() + contact_->friction_dissipation() +
+                          cutter_->damping_dissipation() + released_energy_;
     r.external_work = frame_work_;
     double failed   = 0;
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
@@ -446,7 +505,7 @@ namespace coupling
     // travel (the cutter then meets only uncut rock; at most half the cut) to the start of the
     // stop ramp; indentation, the whole descent
     const double R          = 0.5 * c.disc_diameter;
-    const double fresh_from = std::min(std::sqrt(2.0 * R * c.penetration), 0.5 * c.cut_length);
+    const double fresh_from = std::sqrt(2.0 * R * c.penetration) + prm_.sph.spacing;
     std::vector<double> normal, rolling, side, all_normal, all_rolling;
     for (const auto &r : rows)
     {
@@ -499,6 +558,8 @@ namespace coupling
     x.push_back({"peak_rolling_force_kN", peak(all_rolling) * 1e-3});
     x.push_back({"mean_side_force_kN", mean(side) * 1e-3});
     x.push_back({"chip_volume_cm3", chip * 1e6});
+    x.push_back({"n_chip_particles_released", double(n_released_)});
+    x.push_back({"chip_release_energy_J", released_energy_});
     // specific energy: the work the cutter did on the rock over the volume it broke out
     x.push_back({"cutter_work_J", frame_work_});
     x.push_back({"specific_energy_MJ_m3", chip > 0 ? frame_work_ / chip * 1e-6 : nan});

@@ -7,8 +7,8 @@
 /// run_case() dispatches to run_cutting_case().
 ///
 /// Frame: the block fills [0, L] x [-W/2, W/2] x [-H, 0]; its free top face is z = 0. The cutter
-/// tip starts on that face and moves down (-z) to the penetration; a disc cutter then moves along
-/// +x at that depth. The disc slides without rotating: with frictionless contact (the default) a
+/// indenter tip starts on that face and moves down (-z) to the penetration; a disc cutter starts
+/// outside the free entry face x = 0 with its tip at the penetration depth and moves along +x. The disc slides without rotating: with frictionless contact (the default) a
 /// freely rolling disc and a sliding one take the same traction from the rock, as a free disc
 /// carries no moment about its axle; with friction the sliding disc over-states the rolling force.
 
@@ -77,6 +77,11 @@ namespace coupling
     void choose_time_step();
     /// Prescribed cutter velocity (x, z) [m/s] at time t [s].
     std::array<double, 2> cutter_velocity(double t) const;
+    /// Cutting: particles that failed (damage 1) and are no longer compressed (mean stress >= 0)
+    /// leave the contact for good (stiffness factor 0): they are chip, broken out of the groove.
+    /// Failed particles under compression stay: the confined crushed zone carries the cutter.
+    /// The released particles' penalty energy is booked as dissipated (released_energy_).
+    void release_failed_particles();
     void step();
     HistoryRow measure();
     void check_stability() const;
@@ -106,6 +111,9 @@ namespace coupling
     std::vector<double> force_on_particles_, force_on_cutter_;
     std::size_t n_in_contact_ = 0; ///< particles in contact at the last step
     double contact_stiffness_ = 0; ///< penalty stiffness per particle [N/m]
+    std::vector<char> released_;   ///< per particle: failed and released from the contact
+    std::size_t n_released_  = 0;
+    double released_energy_  = 0; ///< penalty energy the released particles took with them [J]
   };
 
   /// Runs one indentation or linear-cutting case (see CuttingTest).

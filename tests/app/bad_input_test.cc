@@ -382,3 +382,14 @@ TEST(AppRun, DefaultUcsWritesEveryOutput)
   EXPECT_EQ(run_cosim(box, {"run", ucs_case, "--quiet", "--set", "SPH/Particle spacing=0.005"}).status, 2);
   EXPECT_EQ(run_cosim(box, {"run", ucs_case, "--quiet", "--force", "--set", "SPH/Particle spacing=0.005"}).status, 0);
 }
+
+TEST(BadInput, CutTooShortForTheDiscToEnterTheRock)
+{
+  // the disc needs sqrt(2 R p) + dx = 53.9 mm of travel to be fully in the rock (17-inch disc,
+  // 6 mm deep, 3 mm spacing): a 50 mm cut would never reach a steady cut
+  Sandbox box;
+  expect_bad_input(box,
+                   {"run", source("cases/linear-cutting/linear-cutting.prm"), "--set",
+                    "Cutter/Cut length=0.05"},
+                   {"Cutter/Cut length", "too short", "80.8"});
+}

@@ -175,3 +175,91 @@ TEST(CurveAnalysis, SecantModulusOfABilinearCurve)
   // a curve that never rises gives no modulus
   EXPECT_NEAR(secant_modulus(strain, std::vector<double>(101, 0.0)), 0.0, 0.0);
 }
+
+namespace
+{
+  /// A 90-degree wedge above the rock, apex line along y at x = 0, z = 0: two flank faces
+  /// z = |x| for |x| <= a, y in [0, W], normals pointing down and out (towards the rock).
+  ContactSurface wedge_surface(double a, double W)
+  {
+    ContactSurface s;
+    const double nodes[6][3] = {{-a, 0, a}, {-a, W, a}, {0, W, 0}, {0, 0, 0}, {a, W, a}, {a, 0, a}};
+    for (const auto &p : nodes)
+    {
+      s.position.insert(s.position.end(), {p[0], p[1], p[2]});
+      s.velocity.insert(s.velocity.end(), {0, 0, 0});
+      s.mass.push_back(0.0);
+    }
+    s.faces.push_back({{0, 1, 2, 3}}); // left flank, normal (-1, 0, -1)/sqrt(2)
+    s.faces.push_back({{3, 2, 4, 5}}); // right flank, normal (1, 0, -1)/sqrt(2)
+    return s;
+  }
+
+  /// Penalty energy of one particle at (x, y, z) against `s`.
+  double energy_at(const ContactSurface &s, const ContactParameters &prm, double x, double y,
+                   double z, std::vector<double> *force = nullptr)
+  {
+    const double pos[3] = {x, y, z}, vel[3] = {0, 0, 0}, mass = 1e-3;
+    ContactParticles p{pos, vel, &mass, 1};
+    PenaltyContact contact(prm, 1);
+    std::vector<double> fp(3, 0.0), fn(3 * s.n_nodes(), 0.0);
+    contact.apply(p, s, 1e-7, fp, fn);
+    if (force)
+      *force = fp;
+    return contact.penalty_energy();
+  }
+} // namespace
+
+TEST(ContactConvexApex, NoGapBelowASharpWedge)
+{
+  // A particle straight below a convex apex projects onto neither flank (it lies in the wedge
+  // between the flanks' normals). Before the fix it felt nothing until the apex passed its
+  // centre, then the full penalty at once: energy from nothing, the sharp-indenter instability.
+  // The signed distance to a convex body is the largest of its face-plane distances,
+  // d = (|x| - z)/sqrt(2) here, so the penalty energy is 0.5 k (r - d)^2 wherever d < r.
+  const double r = 1e-3, a = 0.01, W = 0.01;
+  const ContactSurface s = wedge_surface(a, W);
+  ContactParameters prm;
+  prm.stiffness     = 1e7;
+  prm.radius        = r;
+  prm.convex_master = true;
+  const double x    = 0.2 * r;
+  double previous   = 0, largest_jump = 0;
+  for (int k = 0; k <= 400; ++k)
+  {
+    const double z        = -2.0 * r + k * (1.5 * r / 400); // from clear below up to -0.5 r
+    const double d        = (std::abs(x) - z) / std::sqrt(2.0);
+    const double expected = d < r ? 0.5 * prm.stiffness * (r - d) * (r - d) : 0.0;
+    const double e        = energy_at(s, prm, x, 0.5 * W, z);
+    // 1e-9 relative: round-off of the Newton projection onto a flat face
+    EXPECT_NEAR(e, expected, 1e-9 * 0.5 * prm.stiffness * r * r) << "z/r = " << z / r;
+    largest_jump = std::max(largest_jump, std::abs(e - previous));
+    previous     = e;
+  }
+  // continuous: no step larger than the change of 0.5 k (r - d)^2 over one sample, which is
+  // at most k r (dz / sqrt 2) with dz = 1.5 r / 400 (the old rule jumped by 0.5 k (0.8 r)^2 / 2)
+  EXPECT_LT(largest_jump, prm.stiffness * r * (1.5 * r / 400));
+  // at z = -0.5 r the particle (x = 0.2 r) is inside the normals' wedge: it must be pushed away
+  // from the apex, down and towards +x (the nearer flank, x > 0)
+  std::vector<double> f;
+  energy_at(s, prm, x, 0.5 * W, -0.5 * r, &f);
+  EXPECT_GT(f[0], 0.0);
+  EXPECT_LT(f[2], 0.0);
+  EXPECT_NEAR(f[0], -f[2], 1e-9 * std::abs(f[2])); // along the flank normal (1, 0, -1)/sqrt 2
+}
+
+TEST(ContactConvexApex, NoContactPastTheSurfacesOuterEdge)
+{
+  // past the wedge's outer edge (x = a, an edge of one face only) the flank's plane does not
+  // extend: the particle lies beside the cutter, not under it
+  const double r = 1e-3, a = 0.01, W = 0.01;
+  const ContactSurface s = wedge_surface(a, W);
+  ContactParameters prm;
+  prm.stiffness     = 1e7;
+  prm.radius        = r;
+  prm.convex_master = true;
+  // (x - z)/sqrt(2) = 0.49 r < r: in contact if the plane were extended
+  EXPECT_EQ(energy_at(s, prm, a + 0.5 * r, 0.5 * W, a - 0.2 * r), 0.0);
+  // and just inside the edge it is in contact
+  EXPECT_GT(energy_at(s, prm, a - 0.5 * r, 0.5 * W, a - 1.2 * r), 0.0);
+}

@@ -57,7 +57,10 @@ namespace coupling
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
     /// an apex is the far flank and would push the particle the wrong way. false: flat or
-    /// concave masters (platens, the BTS jaw), the most penetrated face.
+    /// concave masters (platens, the BTS jaw), the most penetrated face. A convex master also
+    /// lets a particle that projects just past an edge shared by two faces (within a particle
+    /// diameter of it) take that face's plane: the largest of the face-plane distances near a
+    /// convex apex is continuous where the projections onto the faces leave a gap.
     bool convex_master = false;
   };
 
@@ -134,6 +137,9 @@ namespace coupling
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
     void build_face_grid(const ContactSurface &surface);
+    /// interior_edge_[f][e]: edge e of face f is shared with another face (computed again only
+    /// when the face list changes).
+    void find_interior_edges(const ContactSurface &surface);
 
     ContactParameters prm_;
     std::vector<FrictionState> friction_;
@@ -145,6 +151,8 @@ namespace coupling
     double grid_cell_ = 1.0;
     std::array<int, 3> grid_n_{};
     std::vector<int> cell_start_, cell_faces_;
+    std::vector<std::array<unsigned int, 4>> edge_faces_;
+    std::vector<std::array<bool, 4>> interior_edge_;
     double normal_force_ = 0, penalty_energy_ = 0, friction_dissipation_ = 0;
     std::size_t n_sliding_ = 0;
   };
