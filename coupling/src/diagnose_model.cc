@@ -279,7 +279,15 @@ namespace coupling::diagnose
       petsc_check(PetscOptionsSetValue(nullptr, "-tao_pounders_delta", "0.05"),
                   "PetscOptionsSetValue");
       petsc_check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-      petsc_check(TaoSolve(tao), "TaoSolve");
+      if (const PetscErrorCode solved = TaoSolve(tao); solved != 0)
+      {
+        TaoDestroy(&tao); // free before the exception leaves: the caller tries the next start
+        VecDestroy(&X);
+        VecDestroy(&F);
+        VecDestroy(&LB);
+        VecDestroy(&UB);
+        petsc_check(solved, "TaoSolve");
+      }
       std::vector<double> xs(n);
       const PetscScalar *xr;
       petsc_check(VecGetArrayRead(X, &xr), "VecGetArrayRead");
