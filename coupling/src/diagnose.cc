@@ -297,10 +297,9 @@ namespace coupling::diagnose
         const auto bin = [](double v) {
           return v > 0 ? std::to_string(std::lround(std::log(v) / std::log(1.1))) : "-";
         };
-        const std::string key = d.test + '|' + d.group + '|' +
-                                std::to_string(std::lround(d.sigma3 * 10)) + '|' +
-                                bin(d.slenderness) + '|' + bin(d.volume_ratio) + '|' +
-                                bin(d.strain_rate);
+        const std::string key =
+          d.test + '|' + d.group + '|' + std::to_string(std::lround(d.sigma3 * 10)) + '|' +
+          bin(d.slenderness) + '|' + bin(d.volume_ratio) + '|' + bin(d.strain_rate);
         auto it     = std::find(keys.begin(), keys.end(), key);
         d.condition = static_cast<int>(it - keys.begin());
         if (it == keys.end())
@@ -538,7 +537,7 @@ namespace coupling::diagnose
       std::map<std::pair<int, int>, Mean> means; // (condition, point) -> replicate means
       for (std::size_t i = 0; i < s.all.size(); ++i)
       {
-        const Datum &d = s.all[i];
+        const Datum &d  = s.all[i];
         const int point = d.kind == Datum::strength ? -1 : static_cast<int>(i);
         Mean &m         = means[{d.condition, point}];
         m.measured += d.measured;
@@ -669,12 +668,12 @@ namespace coupling::diagnose
         const double s3           = s3_10 / 10.0;
         const double meas = std::accumulate(values.begin(), values.end(), 0.0) / values.size();
         Datum d;
-        d.test     = test;
-        d.group    = g->group;
-        d.sigma3   = test == "BTS" ? -meas : s3;
-        d.measured = meas;
-        const double sb = base_model.predict(d, {});
-        const double se = extended ? ext_model.predict(d, current.result.values) : sb;
+        d.test                = test;
+        d.group               = g->group;
+        d.sigma3              = test == "BTS" ? -meas : s3;
+        d.measured            = meas;
+        const double sb       = base_model.predict(d, {});
+        const double se       = extended ? ext_model.predict(d, current.result.values) : sb;
         const auto end_strain = [&](double sigma1) {
           return test == "BTS" ? 0.006 : std::max(0.01, 2.0 * (sigma1 - s3) / g->E);
         };
@@ -688,9 +687,9 @@ namespace coupling::diagnose
         for (auto [e, p, sur] :
              {std::tuple{&out.baseline, &pb, sb}, std::tuple{&out.extended, &pe, se}})
         {
-          e->coupled[name + "_measured_MPa"]  = meas;
-          e->coupled[name + "_peak_MPa"]      = p->peak_MPa;
-          e->coupled[name + "_surrogate_MPa"] = sur;
+          e->coupled[name + "_measured_MPa"]   = meas;
+          e->coupled[name + "_peak_MPa"]       = p->peak_MPa;
+          e->coupled[name + "_surrogate_MPa"]  = sur;
           e->coupled[name + "_relative_error"] = (p->peak_MPa - meas) / meas;
           if (test == "BTS")
             e->coupled[name + "_displacement_at_peak_mm"] = p->displacement_at_peak_mm;
@@ -708,7 +707,7 @@ namespace coupling::diagnose
       out.extended.coupled["strength_rms_MPa"]           = std::sqrt(ss_e / n);
       out.baseline.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_sb / n);
       out.extended.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_se / n);
-      out.coupled_gain = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
+      out.coupled_gain                                   = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
       out.notes.push_back("coupled check: every strength condition of group " + g->group +
                           " (the group of the datum the baseline misses most), run_case at "
                           "spacing " +
@@ -889,7 +888,7 @@ namespace coupling::diagnose
     const std::vector<double> ext_ho_pred =
       current.parameters.empty() ? base_pred
                                  : heldout_predictions(s, current.effects, current.refit, &current);
-    Rms ext_ho = rms_of(s, s.all, ext_ho_pred);
+    Rms ext_ho             = rms_of(s, s.all, ext_ho_pred);
     const Discrepancy disc = discrepancy(s, base_pred, ext_ho_pred, 3.0);
 
     if (!out.identified.empty() && !(ext_ho.norm < base_ho.norm))
@@ -931,8 +930,15 @@ namespace coupling::diagnose
     std::string model_name =
       "linear Mohr-Coulomb (c, phi measured or calibrated from UCS and BTS), measured E, "
       "rigid frictionless platens, platen displacement";
-    out.baseline         = {model_name,       base_rms.norm,  base_ho.norm,  base_rms.strength,
-                            base_ho.strength, base_rms.curve, base_ho.curve, 0, {}};
+    out.baseline         = {model_name,
+                            base_rms.norm,
+                            base_ho.norm,
+                            base_rms.strength,
+                            base_ho.strength,
+                            base_rms.curve,
+                            base_ho.curve,
+                            0,
+                            {}};
     std::string ext_name = current.refit ? "baseline, strength refitted" : "baseline";
     for (const auto &e : current.effects)
       ext_name += " + " + e;
@@ -944,16 +950,23 @@ namespace coupling::diagnose
     }
     else
       out.extended_parameters = fitted_values(s, current);
-    out.extended     = {ext_name,        ext_rms.norm,  ext_ho.norm,  ext_rms.strength,
-                        ext_ho.strength, ext_rms.curve, ext_ho.curve, 0, {}};
+    out.extended     = {ext_name,
+                        ext_rms.norm,
+                        ext_ho.norm,
+                        ext_rms.strength,
+                        ext_ho.strength,
+                        ext_rms.curve,
+                        ext_ho.curve,
+                        0,
+                        {}};
     out.gain         = ext_rms.norm > 0 ? base_rms.norm / ext_rms.norm : 1;
     out.heldout_gain = ext_ho.norm > 0 ? base_ho.norm / ext_ho.norm : 1;
     if (out.identified != std::vector<std::string>{"none"} && disc.n > 0)
     {
-      out.n_discrepancy         = disc.n;
-      out.baseline.discrepancy  = disc.before;
-      out.extended.discrepancy  = disc.after;
-      out.discrepancy_gain      = disc.after > 0 ? disc.before / disc.after : 1;
+      out.n_discrepancy        = disc.n;
+      out.baseline.discrepancy = disc.before;
+      out.extended.discrepancy = disc.after;
+      out.discrepancy_gain     = disc.after > 0 ? disc.before / disc.after : 1;
     }
     else if (disc.n > 0)
     {

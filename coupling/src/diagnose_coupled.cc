@@ -10,9 +10,8 @@
 
 namespace coupling::diagnose
 {
-  CoupledPeak coupled_peak(const std::string &test, const double s3_MPa,
-                           const RockParameters &rock, const double spacing,
-                           const double end_strain)
+  CoupledPeak coupled_peak(const std::string &test, const double s3_MPa, const RockParameters &rock,
+                           const double spacing, const double end_strain)
   {
     CaseParameters c;
     c.name               = "diagnose-check";

@@ -359,8 +359,7 @@ namespace coupling::diagnose
         }
       }
       catch (const std::runtime_error &)
-      {
-      }
+      {}
       if (chi2 < best)
       {
         best   = chi2;

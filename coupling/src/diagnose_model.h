@@ -36,7 +36,7 @@ namespace coupling::diagnose
     double strain_rate  = 0;    ///< [1/s]; 0: unknown (strength rows)
     bool platen         = true; ///< curve displacement read at the platen
     int source          = 0;    ///< index of the row / curve it came from
-    int condition = 0; ///< index of its test condition (replicates share one; held-out folds)
+    int condition       = 0; ///< index of its test condition (replicates share one; held-out folds)
     std::string where;
   };
 

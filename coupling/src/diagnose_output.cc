@@ -117,8 +117,8 @@ namespace coupling::diagnose
         << "\nWhere the baseline is wrong (" << d.n_discrepancy
         << " test conditions or curve points it misses by more than 3 SDs of their replicate "
            "mean): held-out error "
-        << fmt(d.baseline.discrepancy) << " -> " << fmt(d.extended.discrepancy)
-        << " SDs, gain " << fmt(d.discrepancy_gain)
+        << fmt(d.baseline.discrepancy) << " -> " << fmt(d.extended.discrepancy) << " SDs, gain "
+        << fmt(d.discrepancy_gain)
         << " (the all-data gain above is diluted by the data both models fit to the noise).\n";
       if (!d.baseline.coupled.empty())
       {
@@ -201,8 +201,7 @@ namespace coupling::diagnose
       << ",\n  \"gain\": " << num(d.gain) << ",\n  \"heldout_gain\": " << num(d.heldout_gain)
       << ",\n  \"discrepancy_gain\": " << num(d.discrepancy_gain)
       << ",\n  \"n_discrepancy\": " << d.n_discrepancy
-      << ",\n  \"coupled_gain\": " << num(d.coupled_gain)
-      << ",\n  \"noise\": {";
+      << ",\n  \"coupled_gain\": " << num(d.coupled_gain) << ",\n  \"noise\": {";
     bool first = true;
     for (const auto &[k, v] : d.noise)
     {

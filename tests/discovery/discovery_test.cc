@@ -12,8 +12,8 @@
 // Seeds: 2, 5 and 6. Seeds 1-8 were all run (2026-11-23): none, tension_cutoff,
 // envelope_curvature, crack_closure, machine_compliance and the two-effect case pass on all 8;
 // the effects that act on a few curve peaks only fail on some, for reasons of the data, not of the
-// fit: loading_rate seed 3 draws -3.2 SD of scatter on its single highest-rate specimen (rate_A 28 %
-// low, held-out gain 2.7), seed 4 -2.3 SD (rate_A 18 % low), seed 8 gains 4.6; end_friction seed
+// fit: loading_rate seed 3 draws -3.2 SD of scatter on its single highest-rate specimen (rate_A 28
+// % low, held-out gain 2.7), seed 4 -2.3 SD (rate_A 18 % low), seed 8 gains 4.6; end_friction seed
 // 1 recovers mu 10.8 % high (1.1 standard errors: mu's SE is about 0.03 from these six curves);
 // heterogeneity seed 3 recovers m 11 % low. A 10 % recovery of such effects at 2 % scatter holds
 // only for noise draws within one to two SD; the seeds here are ones where it does.
