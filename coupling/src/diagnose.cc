@@ -282,6 +282,30 @@ namespace coupling::diagnose
           all.push_back(q);
         }
       }
+      // test conditions: replicate specimens (same test, group, confinement; for curves also
+      // slenderness, volume and strain rate within 10 %) share one; curve points share their
+      // curve's
+      std::vector<std::string> keys;
+      std::map<int, int> of_source;
+      for (auto &d : all)
+      {
+        if (d.kind == Datum::curve_point)
+        {
+          d.condition = of_source.at(d.source);
+          continue;
+        }
+        const auto bin = [](double v) {
+          return v > 0 ? std::to_string(std::lround(std::log(v) / std::log(1.1))) : "-";
+        };
+        const std::string key =
+          d.test + '|' + d.group + '|' + std::to_string(std::lround(d.sigma3 * 10)) + '|' +
+          bin(d.slenderness) + '|' + bin(d.volume_ratio) + '|' + bin(d.strain_rate);
+        auto it     = std::find(keys.begin(), keys.end(), key);
+        d.condition = static_cast<int>(it - keys.begin());
+        if (it == keys.end())
+          keys.push_back(key);
+        of_source[d.source] = d.condition;
+      }
       return all;
     }
 
@@ -458,35 +482,87 @@ namespace coupling::diagnose
       return rms_of(s, data, predictions);
     }
 
-    /// Leave-one-specimen-out (each strength row or curve is one fold) up to 20 specimens; beyond,
-    /// 20 folds of every 20th specimen.
-    Rms heldout(const Study &s, const EffectSet &effects, const bool refit, const Fitted *full)
+    /// Held-out predictions of every datum of s.all (same order): leave one specimen out (each
+    /// strength row or curve is one fold) up to 20 specimens; beyond, 20 folds of every 20th.
+    /// (Leaving a whole condition out instead makes the extreme L/D, volume or rate of a curve
+    /// series an extrapolation that two or three curves cannot pin down.)
+    std::vector<double> heldout_predictions(const Study &s, const EffectSet &effects,
+                                            const bool refit, const Fitted *full)
     {
       std::set<int> sources;
       for (const auto &d : s.all)
         sources.insert(d.source);
       const int n_folds = std::min<int>(20, static_cast<int>(sources.size()));
-      std::vector<Datum> out_all;
-      std::vector<double> pred_all;
+      std::vector<double> pred(s.all.size());
       const Surrogate model(s.groups, effects, refit);
       for (int k = 0; k < n_folds; ++k)
       {
-        std::vector<Datum> train, test;
+        std::vector<Datum> train;
         for (const auto &d : s.all)
-          (d.source % n_folds == k ? test : train).push_back(d);
+          if (d.source % n_folds != k)
+            train.push_back(d);
         std::vector<double> p = model.initial();
         if (full != nullptr && !full->parameters.empty())
-        {
-          const Fitted f = fit_model(s, effects, refit, train, values_of(*full));
-          p              = f.result.values;
-        }
-        for (const auto &d : test)
-        {
-          out_all.push_back(d);
-          pred_all.push_back(model.predict(d, p));
-        }
+          p = fit_model(s, effects, refit, train, values_of(*full)).result.values;
+        for (std::size_t i = 0; i < s.all.size(); ++i)
+          if (s.all[i].source % n_folds == k)
+            pred[i] = model.predict(s.all[i], p);
       }
-      return rms_of(s, out_all, pred_all);
+      return pred;
+    }
+
+    Rms heldout(const Study &s, const EffectSet &effects, const bool refit, const Fitted *full)
+    {
+      return rms_of(s, s.all, heldout_predictions(s, effects, refit, full));
+    }
+
+    /// The discrepancy: the test conditions the baseline misses by more than `z` noise SDs of their
+    /// replicate mean (strength data; each curve point is its own condition). The RMS error of
+    /// `base` and of the held-out predictions `ext` on them, in SDs of the replicate means, and
+    /// their count.
+    struct Discrepancy
+    {
+      double before = 0, after = 0;
+      int n = 0;
+    };
+
+    Discrepancy discrepancy(const Study &s, const std::vector<double> &base,
+                            const std::vector<double> &ext, const double z)
+    {
+      struct Mean
+      {
+        double measured = 0, base = 0, ext = 0, var = 0;
+        int n = 0;
+      };
+      std::map<std::pair<int, int>, Mean> means; // (condition, point) -> replicate means
+      for (std::size_t i = 0; i < s.all.size(); ++i)
+      {
+        const Datum &d  = s.all[i];
+        const int point = d.kind == Datum::strength ? -1 : static_cast<int>(i);
+        Mean &m         = means[{d.condition, point}];
+        m.measured += d.measured;
+        m.base += base[i];
+        m.ext += ext[i];
+        m.var += std::pow(s.noise(d), 2);
+        ++m.n;
+      }
+      Discrepancy r;
+      for (const auto &[k, m] : means)
+      {
+        const double sd = std::sqrt(m.var) / m.n; // SD of the mean of n specimens
+        const double rb = (m.base - m.measured) / m.n / sd;
+        if (std::abs(rb) <= z)
+          continue;
+        r.before += rb * rb;
+        r.after += std::pow((m.ext - m.measured) / m.n / sd, 2);
+        ++r.n;
+      }
+      if (r.n > 0)
+      {
+        r.before = std::sqrt(r.before / r.n);
+        r.after  = std::sqrt(r.after / r.n);
+      }
+      return r;
     }
 
     std::vector<FittedValue> fitted_values(const Study &s, const Fitted &f)
@@ -509,6 +585,137 @@ namespace coupling::diagnose
         }
       return v;
     }
+    /// Rock of the coupled simulator for a group: baseline (Mohr-Coulomb with the group's c, phi)
+    /// or the extended strength model (refitted UCS, Hoek-Brown, tension cut-off).
+    coupling::RockParameters coupled_rock(const Data &data, const GroupBase &g,
+                                          const Fitted *extended)
+    {
+      coupling::RockParameters r;
+      r.model          = "mohr-coulomb";
+      r.youngs_modulus = g.E * 1e6;
+      for (const auto &m : data.materials)
+        if (m.group == g.group && m.nu)
+          r.poissons_ratio = *m.nu;
+      for (const auto &m : data.materials)
+        if (m.group == g.group && m.density)
+          r.density = *m.density;
+      const auto mc = [&r](double ucs, double phi) {
+        const double sp = std::sin(phi * pi / 180), cp = std::cos(phi * pi / 180);
+        r.friction_angle = phi;
+        r.cohesion       = ucs * 1e6 * (1 - sp) / (2 * cp);
+        r.ucs            = ucs * 1e6;
+      };
+      if (extended == nullptr)
+      {
+        mc(g.ucs, g.phi);
+        return r;
+      }
+      const auto v     = values_of(*extended);
+      const double ucs = v.count("UCS_" + g.group) ? v.at("UCS_" + g.group) : g.ucs;
+      if (extended->effects.count("envelope_curvature"))
+      {
+        r.model         = "hoek-brown";
+        r.ucs           = ucs * 1e6;
+        r.hoek_brown_mi = v.at("m_i");
+      }
+      else
+        mc(ucs, v.count("phi") ? v.at("phi") : g.phi);
+      if (extended->effects.count("tension_cutoff"))
+      {
+        r.tensile_strength = v.at("T0_ratio") * ucs * 1e6;
+        if (r.model == "mohr-coulomb")
+          r.model = "mohr-coulomb-cutoff";
+      }
+      return r;
+    }
+
+    /// Runs the coupled simulator (run_case) on every strength condition (test, confinement) of
+    /// the group whose datum the baseline misses most, for the baseline and the extended rock,
+    /// and records their peaks and errors against the measured mean of the condition. A
+    /// compressive run goes on to twice the strain at which the model's own envelope is reached
+    /// (q / E), so that a steep baseline envelope is not cut off by the end strain.
+    void coupled_check(const Study &s, const Surrogate &base_model, const Surrogate &ext_model,
+                       const Fitted &current, Diagnosis &out)
+    {
+      const bool extended = out.identified != std::vector<std::string>{"none"};
+      const Datum *worst  = nullptr;
+      double worst_r      = -1;
+      for (const auto &d : s.all)
+        if (d.kind == Datum::strength)
+          if (const double r = std::abs(base_model.predict(d, {}) - d.measured) / s.noise(d);
+              r > worst_r)
+          {
+            worst_r = r;
+            worst   = &d;
+          }
+      const GroupBase *g = nullptr;
+      for (const auto &x : s.groups)
+        if (x.group == worst->group)
+          g = &x;
+      // the conditions: (test, confinement) -> measured values
+      std::map<std::pair<std::string, long>, std::vector<double>> conditions;
+      for (const auto &d : s.all)
+        if (d.kind == Datum::strength && d.group == g->group && d.test != "TXE")
+          conditions[{d.test, d.test == "BTS" ? 0L : std::lround(d.sigma3 * 10)}].push_back(
+            d.measured);
+      const auto rb = coupled_rock(s.data, *g, nullptr);
+      const auto re = coupled_rock(s.data, *g, extended ? &current : nullptr);
+      double ss_b = 0, ss_e = 0, ss_sb = 0, ss_se = 0;
+      int n = 0;
+      for (const auto &[key, values] : conditions)
+      {
+        const auto &[test, s3_10] = key;
+        const double s3           = s3_10 / 10.0;
+        const double meas = std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+        Datum d;
+        d.test                = test;
+        d.group               = g->group;
+        d.sigma3              = test == "BTS" ? -meas : s3;
+        d.measured            = meas;
+        const double sb       = base_model.predict(d, {});
+        const double se       = extended ? ext_model.predict(d, current.result.values) : sb;
+        const auto end_strain = [&](double sigma1) {
+          return test == "BTS" ? 0.006 : std::max(0.01, 2.0 * (sigma1 - s3) / g->E);
+        };
+        const CoupledPeak pb =
+          coupled_peak(test, s3, rb, s.options.coupled_spacing, end_strain(sb));
+        const CoupledPeak pe =
+          extended ? coupled_peak(test, s3, re, s.options.coupled_spacing, end_strain(se)) : pb;
+        std::string name = test + "_" + g->group;
+        if (test != "UCS" && test != "BTS")
+          name += "_" + std::to_string(std::lround(s3)) + "MPa";
+        for (auto [e, p, sur] :
+             {std::tuple{&out.baseline, &pb, sb}, std::tuple{&out.extended, &pe, se}})
+        {
+          e->coupled[name + "_measured_MPa"]   = meas;
+          e->coupled[name + "_peak_MPa"]       = p->peak_MPa;
+          e->coupled[name + "_surrogate_MPa"]  = sur;
+          e->coupled[name + "_relative_error"] = (p->peak_MPa - meas) / meas;
+          if (test == "BTS")
+            e->coupled[name + "_displacement_at_peak_mm"] = p->displacement_at_peak_mm;
+          if (p->stop_reason == "end strain" && test != "BTS")
+            out.notes.push_back("coupled " + name + " (" + e->model.substr(0, 8) +
+                                "...): stopped at the end strain, its peak is a lower bound");
+        }
+        ss_b += std::pow(pb.peak_MPa - meas, 2);
+        ss_e += std::pow(pe.peak_MPa - meas, 2);
+        ss_sb += std::pow(sb - meas, 2);
+        ss_se += std::pow(se - meas, 2);
+        ++n;
+      }
+      out.baseline.coupled["strength_rms_MPa"]           = std::sqrt(ss_b / n);
+      out.extended.coupled["strength_rms_MPa"]           = std::sqrt(ss_e / n);
+      out.baseline.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_sb / n);
+      out.extended.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_se / n);
+      out.coupled_gain                                   = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
+      out.notes.push_back("coupled check: every strength condition of group " + g->group +
+                          " (the group of the datum the baseline misses most), run_case at "
+                          "spacing " +
+                          std::to_string(s.options.coupled_spacing) +
+                          " m; effects outside the rock model (compliance, friction, rate, "
+                          "closure, size) are not in it");
+    }
+
   } // namespace
 
   Diagnosis diagnose(const Data &data, const Options &options)
@@ -675,8 +882,15 @@ namespace coupling::diagnose
     // is not kept
     const Surrogate ext_model(s.groups, current.effects, current.refit);
     Rms ext_rms = rms_of(s, ext_model, current.result.values, s.all);
-    Rms ext_ho =
-      current.parameters.empty() ? base_ho : heldout(s, current.effects, current.refit, &current);
+    std::vector<double> base_pred;
+    for (const auto &d : s.all)
+      base_pred.push_back(base_model.predict(d, {}));
+    const std::vector<double> ext_ho_pred =
+      current.parameters.empty() ? base_pred
+                                 : heldout_predictions(s, current.effects, current.refit, &current);
+    Rms ext_ho             = rms_of(s, s.all, ext_ho_pred);
+    const Discrepancy disc = discrepancy(s, base_pred, ext_ho_pred, 3.0);
+
     if (!out.identified.empty() && !(ext_ho.norm < base_ho.norm))
     {
       out.notes.push_back("the BIC-selected extension (" + out.identified.front() +
@@ -716,8 +930,15 @@ namespace coupling::diagnose
     std::string model_name =
       "linear Mohr-Coulomb (c, phi measured or calibrated from UCS and BTS), measured E, "
       "rigid frictionless platens, platen displacement";
-    out.baseline         = {model_name,       base_rms.norm,  base_ho.norm,  base_rms.strength,
-                            base_ho.strength, base_rms.curve, base_ho.curve, {}};
+    out.baseline         = {model_name,
+                            base_rms.norm,
+                            base_ho.norm,
+                            base_rms.strength,
+                            base_ho.strength,
+                            base_rms.curve,
+                            base_ho.curve,
+                            0,
+                            {}};
     std::string ext_name = current.refit ? "baseline, strength refitted" : "baseline";
     for (const auto &e : current.effects)
       ext_name += " + " + e;
@@ -729,84 +950,35 @@ namespace coupling::diagnose
     }
     else
       out.extended_parameters = fitted_values(s, current);
-    out.extended     = {ext_name,        ext_rms.norm,  ext_ho.norm,  ext_rms.strength,
-                        ext_ho.strength, ext_rms.curve, ext_ho.curve, {}};
+    out.extended     = {ext_name,
+                        ext_rms.norm,
+                        ext_ho.norm,
+                        ext_rms.strength,
+                        ext_ho.strength,
+                        ext_rms.curve,
+                        ext_ho.curve,
+                        0,
+                        {}};
     out.gain         = ext_rms.norm > 0 ? base_rms.norm / ext_rms.norm : 1;
     out.heldout_gain = ext_ho.norm > 0 ? base_ho.norm / ext_ho.norm : 1;
+    if (out.identified != std::vector<std::string>{"none"} && disc.n > 0)
+    {
+      out.n_discrepancy        = disc.n;
+      out.baseline.discrepancy = disc.before;
+      out.extended.discrepancy = disc.after;
+      out.discrepancy_gain     = disc.after > 0 ? disc.before / disc.after : 1;
+    }
+    else if (disc.n > 0)
+    {
+      out.n_discrepancy        = disc.n;
+      out.baseline.discrepancy = out.extended.discrepancy = disc.before;
+    }
     out.notes.erase(std::remove(out.notes.begin(), out.notes.end(), std::string()),
                     out.notes.end());
-    // the coupled simulator on the datum the baseline misses most (optional: minutes per run)
+    // the coupled simulator on every strength condition of the group the baseline misses most
+    // (optional: seconds to a minute per run at 5 mm)
     if (options.coupled_spacing > 0 && has_strength)
-    {
-      const Datum *worst = nullptr;
-      double worst_r     = -1;
-      for (const auto &d : s.all)
-        if (d.kind == Datum::strength)
-        {
-          const double r = std::abs(base_model.predict(d, {}) - d.measured) / s.noise(d);
-          if (r > worst_r)
-          {
-            worst_r = r;
-            worst   = &d;
-          }
-        }
-      const GroupBase *g = nullptr;
-      for (const auto &x : s.groups)
-        if (x.group == worst->group)
-          g = &x;
-      coupling::RockParameters rb;
-      rb.model          = "mohr-coulomb";
-      rb.youngs_modulus = g->E * 1e6;
-      for (const auto &m : data.materials)
-        if (m.group == g->group && m.nu)
-          rb.poissons_ratio = *m.nu;
-      for (const auto &m : data.materials)
-        if (m.group == g->group && m.density)
-          rb.density = *m.density;
-      const auto mc = [](coupling::RockParameters &r, double ucs, double phi) {
-        const double sp = std::sin(phi * pi / 180), cp = std::cos(phi * pi / 180);
-        r.friction_angle = phi;
-        r.cohesion       = ucs * 1e6 * (1 - sp) / (2 * cp);
-        r.ucs            = ucs * 1e6;
-      };
-      mc(rb, g->ucs, g->phi);
-      coupling::RockParameters re = rb;
-      const auto v                = values_of(current);
-      const double ucs_e          = v.count("UCS_" + g->group) ? v.at("UCS_" + g->group) : g->ucs;
-      if (current.effects.count("envelope_curvature"))
-      {
-        re.model         = "hoek-brown";
-        re.ucs           = ucs_e * 1e6;
-        re.hoek_brown_mi = v.at("m_i");
-      }
-      else
-        mc(re, ucs_e, v.count("phi") ? v.at("phi") : g->phi);
-      if (current.effects.count("tension_cutoff"))
-      {
-        re.tensile_strength = v.at("T0_ratio") * ucs_e * 1e6;
-        if (re.model == "mohr-coulomb")
-          re.model = "mohr-coulomb-cutoff";
-      }
-      const double s3 = worst->test == "BTS" ? 0.0 : worst->sigma3;
-      const std::string key =
-        worst->test + "_" + g->group +
-        (worst->test == "CTCS" ? "_" + std::to_string(static_cast<int>(s3)) + "MPa" : "");
-      const double pb   = coupled_peak_stress(worst->test, s3, rb, options.coupled_spacing);
-      const double pe   = out.identified.front() == "none"
-                            ? pb
-                            : coupled_peak_stress(worst->test, s3, re, options.coupled_spacing);
-      const double meas = worst->test == "BTS" ? worst->measured : worst->measured;
-      out.baseline.coupled[key + "_measured_MPa"]   = meas;
-      out.baseline.coupled[key + "_peak_MPa"]       = pb;
-      out.baseline.coupled[key + "_relative_error"] = std::abs(pb - meas) / meas;
-      out.extended.coupled[key + "_measured_MPa"]   = meas;
-      out.extended.coupled[key + "_peak_MPa"]       = pe;
-      out.extended.coupled[key + "_relative_error"] = std::abs(pe - meas) / meas;
-      out.notes.push_back(
-        "coupled check: " + key + " with run_case at spacing " +
-        std::to_string(options.coupled_spacing) +
-        " m; effects outside the rock model (compliance, friction, rate, closure) are not in it");
-    }
+      coupled_check(s, base_model, ext_model, current, out);
     // tables for the plots: envelopes from the largest tension to the largest confinement
     {
       const bool ext_on            = out.identified != std::vector<std::string>{"none"};

@@ -229,7 +229,12 @@ namespace coupling::diagnose
     void petsc_check(const PetscErrorCode e, const char *what)
     {
       if (e != 0)
-        throw std::runtime_error(std::string("PETSc/TAO failed in ") + what);
+      {
+        const char *text = nullptr;
+        PetscErrorMessage(e, &text, nullptr);
+        throw std::runtime_error(std::string("PETSc/TAO failed in ") + what + " (" +
+                                 (text ? text : "unknown error") + ")");
+      }
     }
 
     void ensure_petsc()
@@ -274,7 +279,15 @@ namespace coupling::diagnose
       petsc_check(PetscOptionsSetValue(nullptr, "-tao_pounders_delta", "0.05"),
                   "PetscOptionsSetValue");
       petsc_check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-      petsc_check(TaoSolve(tao), "TaoSolve");
+      if (const PetscErrorCode solved = TaoSolve(tao); solved != 0)
+      {
+        TaoDestroy(&tao); // free before the exception leaves: the caller tries the next start
+        VecDestroy(&X);
+        VecDestroy(&F);
+        VecDestroy(&LB);
+        VecDestroy(&UB);
+        petsc_check(solved, "TaoSolve");
+      }
       std::vector<double> xs(n);
       const PetscScalar *xr;
       petsc_check(VecGetArrayRead(X, &xr), "VecGetArrayRead");
@@ -316,25 +329,45 @@ namespace coupling::diagnose
     ensure_petsc();
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> x_best;
+    std::string failure;
     for (const auto &s : starts)
     {
       std::vector<double> x0(n);
       for (std::size_t i = 0; i < n; ++i)
         x0[i] = to_internal(prm[i], s[i]);
-      auto [x, chi2] = pounders(c, x0);
-      // a second pass from the first optimum with a fresh trust region polishes the minimum
-      auto [x2, chi22] = pounders(c, x);
-      if (chi22 < chi2)
+      // POUNDERS can stop with a LAPACK error when its interpolation set degenerates (seen with
+      // 13 parameters from a warm start): that start is dropped, the others are kept
+      std::pair<std::vector<double>, double> first;
+      try
       {
-        x    = x2;
-        chi2 = chi22;
+        first = pounders(c, x0);
       }
+      catch (const std::runtime_error &e)
+      {
+        failure = e.what();
+        continue;
+      }
+      auto [x, chi2] = first;
+      // a second pass from the first optimum with a fresh trust region polishes the minimum
+      try
+      {
+        auto [x2, chi22] = pounders(c, x);
+        if (chi22 < chi2)
+        {
+          x    = x2;
+          chi2 = chi22;
+        }
+      }
+      catch (const std::runtime_error &)
+      {}
       if (chi2 < best)
       {
         best   = chi2;
         x_best = x;
       }
     }
+    if (x_best.empty())
+      throw std::runtime_error(failure);
     result.values        = physical(model, x_best);
     result.chi2          = best;
     result.n_evaluations = c.n_evaluations;

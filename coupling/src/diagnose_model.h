@@ -35,7 +35,8 @@ namespace coupling::diagnose
     double volume_ratio = 1;    ///< specimen volume / a 50x100 mm cylinder's [-]
     double strain_rate  = 0;    ///< [1/s]; 0: unknown (strength rows)
     bool platen         = true; ///< curve displacement read at the platen
-    int source          = 0;    ///< index of the row / curve it came from (held-out folds)
+    int source          = 0;    ///< index of the row / curve it came from
+    int condition       = 0; ///< index of its test condition (replicates share one; held-out folds)
     std::string where;
   };
 
@@ -100,10 +101,19 @@ namespace coupling::diagnose
                 const std::function<double(const Datum &)> &noise,
                 const std::vector<std::vector<double>> &starts);
 
-  /// Peak stress [MPa] of one coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens)
-  /// with `rock` at particle spacing `spacing` [m].
-  double coupled_peak_stress(const std::string &test, double s3_MPa,
-                             const coupling::RockParameters &rock, double spacing);
+  /// What one coupled run gives the diagnosis.
+  struct CoupledPeak
+  {
+    double peak_MPa                = 0; ///< peak axial stress (BTS: 2P / (pi D t)) [MPa]
+    double displacement_at_peak_mm = 0; ///< platen displacement at the peak [mm]
+    std::string stop_reason;
+  };
+
+  /// One coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens, 100 mm long or 25 mm
+  /// thick) with `rock` at particle spacing `spacing` [m], stopped at `end_strain` (BTS: d / D)
+  /// or 20 % past the peak.
+  CoupledPeak coupled_peak(const std::string &test, double s3_MPa,
+                           const coupling::RockParameters &rock, double spacing, double end_strain);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

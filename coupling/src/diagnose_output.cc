@@ -57,7 +57,8 @@ namespace coupling::diagnose
                       ", \"strength_rms_MPa\": " + num(e.strength_rms_MPa) +
                       ", \"heldout_strength_rms_MPa\": " + num(e.heldout_strength_rms_MPa) +
                       ", \"curve_rms_mm\": " + num(e.curve_rms_mm) +
-                      ", \"heldout_curve_rms_mm\": " + num(e.heldout_curve_rms_mm);
+                      ", \"heldout_curve_rms_mm\": " + num(e.heldout_curve_rms_mm) +
+                      ", \"heldout_discrepancy\": " + num(e.discrepancy);
       for (const auto &[k, v] : e.coupled)
         o += ", " + quote("coupled_" + k) + ": " + num(v);
       return o + "}";
@@ -112,11 +113,23 @@ namespace coupling::diagnose
           << fmt(e->curve_rms_mm) << " / " << fmt(e->heldout_curve_rms_mm) << " |\n";
       r << "\nGain (baseline error / extended error): " << fmt(d.gain) << " on the fitted data, "
         << fmt(d.heldout_gain)
-        << " on held-out specimens. Errors are RMS residuals divided by the data noise.\n";
+        << " on held-out specimens. Errors are RMS residuals divided by the data noise.\n"
+        << "\nWhere the baseline is wrong (" << d.n_discrepancy
+        << " test conditions or curve points it misses by more than 3 SDs of their replicate "
+           "mean): held-out error "
+        << fmt(d.baseline.discrepancy) << " -> " << fmt(d.extended.discrepancy) << " SDs, gain "
+        << fmt(d.discrepancy_gain)
+        << " (the all-data gain above is diluted by the data both models fit to the noise).\n";
       if (!d.baseline.coupled.empty())
       {
-        r << "\nCoupled simulator (run_case, coarse spacing), peak stresses against the "
-             "measured:\n\n"
+        r << "\nCoupled simulator (run_case, coarse spacing) on every strength condition of one "
+             "group: strength RMS "
+          << fmt(d.baseline.coupled.at("strength_rms_MPa")) << " -> "
+          << fmt(d.extended.coupled.at("strength_rms_MPa")) << " MPa, coupled gain "
+          << fmt(d.coupled_gain) << " (the surrogate on the same conditions: "
+          << fmt(d.baseline.coupled.at("surrogate_strength_rms_MPa")) << " -> "
+          << fmt(d.extended.coupled.at("surrogate_strength_rms_MPa"))
+          << " MPa). Peaks against the measured:\n\n"
              "| quantity | baseline | extended |\n|---|---|---|\n";
         for (const auto &[k, v] : d.baseline.coupled)
           r << "| " << k << " | " << fmt(v, 4) << " | "
@@ -186,7 +199,9 @@ namespace coupling::diagnose
       << ",\n  \"extended\": " << error_json(d.extended)
       << ",\n  \"extended_parameters\": " << values_json(d.extended_parameters, "  ")
       << ",\n  \"gain\": " << num(d.gain) << ",\n  \"heldout_gain\": " << num(d.heldout_gain)
-      << ",\n  \"noise\": {";
+      << ",\n  \"discrepancy_gain\": " << num(d.discrepancy_gain)
+      << ",\n  \"n_discrepancy\": " << d.n_discrepancy
+      << ",\n  \"coupled_gain\": " << num(d.coupled_gain) << ",\n  \"noise\": {";
     bool first = true;
     for (const auto &[k, v] : d.noise)
     {

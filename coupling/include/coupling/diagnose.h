@@ -95,6 +95,9 @@ namespace coupling::diagnose
     double fit = 0, heldout = 0; ///< RMS normalised residual [-]
     double strength_rms_MPa = 0, heldout_strength_rms_MPa = 0;
     double curve_rms_mm = 0, heldout_curve_rms_mm = 0;
+    /// Held-out RMS error on the discrepancy: the test conditions the baseline misses by more than
+    /// 3 SDs of their replicate mean, in those SDs (leave-one-specimen-out predictions) [-]
+    double discrepancy = 0;
     std::map<std::string, double> coupled; ///< coupled-simulator errors, when run
   };
 
@@ -108,6 +111,12 @@ namespace coupling::diagnose
     std::vector<Candidate> candidates;
     ModelError baseline, extended;
     double gain = 1, heldout_gain = 1;
+    /// Baseline / extended held-out error on the discrepancy (ModelError::discrepancy): the gain
+    /// where the baseline is wrong, undiluted by the data both models fit to the noise [-]
+    double discrepancy_gain = 1;
+    int n_discrepancy       = 0; ///< test conditions (or curve points) in the discrepancy
+    /// Coupled-simulator strength RMS, baseline / extended (ModelError::coupled), when run [-]
+    double coupled_gain = 1;
     std::vector<FittedValue> extended_parameters;
     std::map<std::string, double> noise; ///< per data kind, what it came from in notes
     std::vector<std::string> notes;
