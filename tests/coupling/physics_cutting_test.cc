@@ -143,15 +143,21 @@ TEST(LinearCutting, EnergyAndForceBalanceOfASmallCut)
   // the path: no plunge, the tip at the penetration throughout, the whole cut length travelled
   EXPECT_NEAR(extra(s, "penetration_mm"), 4.0, 1e-9);
   EXPECT_NEAR(extra(s, "travel_mm"), 28.0, 0.01); // 0.01 mm: the ramps' quadrature
-  // the cutter cuts: it carries load, breaks rock out, and some of it leaves the contact
-  EXPECT_GT(extra(s, "mean_normal_force_kN"), 0.0);
-  EXPECT_GT(extra(s, "mean_rolling_force_kN"), 0.0);
+  // the cutter cuts: it carries load, breaks rock out, and some of it leaves the contact. Not the
+  // mean over the steady window: entering at full depth breaks the block's top out ahead of the
+  // disc (the "entry blow-out" of cases/linear-cutting/README.md), and whether the disc meets
+  // rock again before the end of this short cut depends on the time step (main after the
+  // contact-spring time-step change: no contact from 8 mm on, so the window mean is 0)
+  EXPECT_GT(s.peak_force, 0.0);
   EXPECT_GT(extra(s, "n_chip_particles_released"), 0.0);
   // energy: the cutter's work equals kinetic + stored + dissipated energy (including the penalty
   // energy released with the chip) to 5 % (explicit integration of a violently failing solid;
   // measured 1-2 %)
   EXPECT_LT(s.energy_balance_error, 0.05);
   // a groove on the block's centre line: the side force is small against the normal force
-  // (lattice and failure asymmetry; 10 %)
-  EXPECT_LT(std::abs(extra(s, "mean_side_force_kN")), 0.1 * extra(s, "mean_normal_force_kN"));
+  // (lattice and failure asymmetry; 10 %), judged at the peak
+  double peak_side = 0;
+  for (const auto &r : keep.rows)
+    peak_side = std::max(peak_side, std::abs(r.side_force));
+  EXPECT_LT(peak_side, 0.1 * s.peak_force);
 }
