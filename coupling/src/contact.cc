@@ -109,6 +109,7 @@ namespace coupling
       }
       box[f] = b;
     }
+    face_box_    = box;
     grid_origin_ = lo;
     grid_cell_   = std::max(largest, 1e-12);
     for (int d = 0; d < 3; ++d)
@@ -160,6 +161,18 @@ namespace coupling
     for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q)
     {
       const int f    = cell_faces_[q];
+      // a flat or concave master (a platen) takes a face only with the particle within 2 r of
+      // its plane and over the face, so within the face's box inflated by 2 r: skip the Newton
+      // iterations for any other face (1 % margin on the inflation for the closest-point
+      // iteration's tolerance). A convex master also uses faces the particle is clear of.
+      if (!prm_.convex_master)
+      {
+        const auto &b      = face_box_[f];
+        const double slack = 0.02 * prm_.radius;
+        if (p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack ||
+            p[0] > b[3] + slack || p[1] > b[4] + slack || p[2] > b[5] + slack)
+          continue;
+      }
       const auto &fn = s.faces[f];
       const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
       // Newton iterations for the closest point x(xi, eta) of the bilinear face.

@@ -151,6 +151,7 @@ namespace coupling
     double grid_cell_ = 1.0;
     std::array<int, 3> grid_n_{};
     std::vector<int> cell_start_, cell_faces_;
+    std::vector<std::array<double, 6>> face_box_; // per face: lower, upper corner, inflated by 2 r
     std::vector<std::array<unsigned int, 4>> edge_faces_;
     std::vector<std::array<bool, 4>> interior_edge_;
     double normal_force_ = 0, penalty_energy_ = 0, friction_dissipation_ = 0;
