@@ -163,19 +163,8 @@ namespace coupling
   {
     const CutterParameters &c = prm_.cutter;
     const double dx           = prm_.sph.spacing;
-    fem::Parameters fp;
-    if (prm_.platens.model == "rigid")
-      fp.model = fem::PlatenModel::rigid;
-    else if (prm_.platens.model == "elastic")
-      fp.model = fem::PlatenModel::elastic;
-    else
-      throw InputError("Platens/Model: unknown model '" + prm_.platens.model +
-                       "'; accepted: rigid, elastic");
-    fp.youngs_modulus = prm_.platens.youngs_modulus;
-    fp.poissons_ratio = prm_.platens.poissons_ratio;
-    fp.density        = prm_.platens.density;
     // cutters are small: one particle spacing resolves the tip profile
-    fp.element_size = prm_.platens.element_size > 0 ? prm_.platens.element_size : dx;
+    fem::Parameters fp = fem_parameters(prm_.platens, dx);
 
     fem::PlatenGeometry g;
     g.side           = fem::PlatenSide::above;

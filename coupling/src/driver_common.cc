@@ -1,5 +1,7 @@
 #include "driver_common.h"
 
+#include <coupling/run_case.h>
+
 #include <fem/platen.h>
 #include <sph/body.h>
 #include <sph/strength_scatter.h>
@@ -45,6 +47,22 @@ namespace coupling
       energy += 0.5 * m[i] * (Eigen::RowVector3d(v[i][0], v[i][1], v[i][2]) - fit).squaredNorm();
     }
     return energy;
+  }
+
+  fem::Parameters fem_parameters(const PlatenParameters &platens, const double default_element_size)
+  {
+    fem::Parameters fp;
+    if (platens.model == "rigid")
+      fp.model = fem::PlatenModel::rigid;
+    else if (platens.model == "elastic")
+      fp.model = fem::PlatenModel::elastic;
+    else
+      throw InputError("Platens/Model: unknown model '" + platens.model + "'; accepted: rigid, elastic");
+    fp.youngs_modulus = platens.youngs_modulus;
+    fp.poissons_ratio = platens.poissons_ratio;
+    fp.density        = platens.density;
+    fp.element_size   = platens.element_size > 0 ? platens.element_size : default_element_size;
+    return fp;
   }
 
   void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, const double spacing)

@@ -8,6 +8,8 @@
 #include <coupling/contact.h>
 #include <coupling/run_output.h>
 
+#include <fem/parameters.h>
+
 #include <string>
 
 namespace sph
@@ -36,6 +38,11 @@ namespace coupling
   /// loaded quasi-statically moves affinely (rigid motion plus a uniform strain rate), so what
   /// is left are its waves and vibrations.
   double non_affine_kinetic_energy(const sph::Body<3> &body);
+
+  /// The FEM body (platen or cutter) of Platens/*: model, steel, and the element size, which
+  /// is Platens/Element size where set, else `default_element_size` [m]. Throws InputError for an
+  /// unknown Platens/Model.
+  fem::Parameters fem_parameters(const PlatenParameters &platens, double default_element_size);
 
   /// The deformed mesh of one platen or cutter, under the given name.
   MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen);

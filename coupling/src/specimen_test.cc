@@ -245,18 +245,7 @@ namespace coupling
   void SpecimenTest::build_platens()
   {
     const double dx = prm_.sph.spacing;
-    fem::Parameters fp;
-    if (prm_.platens.model == "rigid")
-      fp.model = fem::PlatenModel::rigid;
-    else if (prm_.platens.model == "elastic")
-      fp.model = fem::PlatenModel::elastic;
-    else
-      throw InputError("Platens/Model: unknown model '" + prm_.platens.model +
-                       "'; accepted: rigid, elastic");
-    fp.youngs_modulus = prm_.platens.youngs_modulus;
-    fp.poissons_ratio = prm_.platens.poissons_ratio;
-    fp.density        = prm_.platens.density;
-    fp.element_size   = prm_.platens.element_size > 0 ? prm_.platens.element_size : 2.0 * dx;
+    fem::Parameters fp = fem_parameters(prm_.platens, 2.0 * dx);
 
     fem::PlatenGeometry g;
     g.thickness = prm_.platens.thickness;
