@@ -476,9 +476,8 @@ namespace coupling
         {
           csv << ",";
           if (run.status == 0)
-            for (const auto &[name, value] : s.extra)
-              if (name == c)
-                csv << number(value);
+            if (const auto value = find_extra(s, c))
+              csv << number(*value);
         }
         csv << "\n";
       }

@@ -1,6 +1,8 @@
 // The indentation driver against closed forms: a rigid flat cylindrical punch pressed into an
 // elastic rock block (Boussinesq), force balance between the cutter and the block's supports, and
 // the CSM cutter-force estimate against hand-computed numbers.
+#include "run_helpers.h"
+
 #include "../../coupling/src/cutting_test.h"
 
 #include <coupling/run_case.h>
@@ -11,24 +13,10 @@
 #include <string>
 
 using namespace coupling;
+using namespace coupling::test;
 
 namespace
 {
-  struct Keep : RunObserver
-  {
-    std::vector<HistoryRow> rows;
-    void history(const HistoryRow &r) override { rows.push_back(r); }
-  };
-
-  double extra(const Summary &s, const std::string &key)
-  {
-    for (const auto &[k, v] : s.extra)
-      if (k == key)
-        return v;
-    ADD_FAILURE() << "summary has no " << key;
-    return 0;
-  }
-
   /// A 10 mm flat punch into an elastic basalt block 36 x 36 x 18 mm at 2 mm spacing.
   CaseParameters elastic_punch()
   {

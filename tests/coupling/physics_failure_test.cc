@@ -1,6 +1,8 @@
 // Where and how the coupled specimens fail: the BTS crack starts at the disc centre and runs
 // along the loaded diameter (plane elasticity + Griffith: the paper's Section 5.2, its Fig. 16),
 // and a heterogeneous rock (Rock/Strength scatter) honours its per-particle strengths.
+#include "run_helpers.h"
+
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -9,17 +11,10 @@
 #include <stdexcept>
 
 using namespace coupling;
+using namespace coupling::test;
 
 namespace
 {
-  double extra(const Summary &s, const std::string &key)
-  {
-    for (const auto &[k, v] : s.extra)
-      if (k == key)
-        return v;
-    throw std::out_of_range("no summary entry " + key);
-  }
-
   // group M1 with Table 4's c and phi (the cases' defaults), softening after the peak
   CaseParameters m1(const std::string &test)
   {

@@ -1,6 +1,8 @@
 // The coupled driver with elastic steel platens (issue 5): the forces exchanged each step cancel,
 // and the apparent modulus against the series stiffness of rock, contact layers and platens;
 // BTS with the ISRM curved jaws.
+#include "run_helpers.h"
+
 #include <coupling/case_file.h>
 #include <coupling/contact.h>
 #include <coupling/run_case.h>
@@ -16,15 +18,10 @@
 #include <iostream>
 
 using namespace coupling;
+using namespace coupling::test;
 
 namespace
 {
-  struct Keep : RunObserver
-  {
-    std::vector<HistoryRow> rows;
-    void history(const HistoryRow &r) override { rows.push_back(r); }
-  };
-
   CaseParameters elastic_ucs_elastic_platens()
   {
     CaseParameters p;
@@ -183,10 +180,7 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
       layer.push_back(p);
   const fem::Platen platen = bottom_platen(c);
   // k as the driver sets it (summary.json: contact_stiffness_N_per_m)
-  double k = 0;
-  for (const auto &[key, value] : s.extra)
-    if (key == "contact_stiffness_N_per_m")
-      k = value;
+  const double k = extra(s, "contact_stiffness_N_per_m");
   ASSERT_GT(k, 0.0);
   const double area          = lattice.true_section_area;
   const double rock_c        = c.length / (c.rock.youngs_modulus * area);

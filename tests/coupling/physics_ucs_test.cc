@@ -1,5 +1,7 @@
 // The coupled driver against closed forms: an elastic rock cylinder between rigid frictionless
 // platens (penalty contact, FEM rigid mode), measured as a laboratory does (gauges).
+#include "run_helpers.h"
+
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -7,15 +9,10 @@
 #include <cmath>
 
 using namespace coupling;
+using namespace coupling::test;
 
 namespace
 {
-  struct Keep : RunObserver
-  {
-    std::vector<HistoryRow> rows;
-    void history(const HistoryRow &r) override { rows.push_back(r); }
-  };
-
   CaseParameters elastic_ucs()
   {
     CaseParameters p;
@@ -26,6 +23,18 @@ namespace
     p.sph.spacing           = 2.5e-3; // D/20, the resolution the SPH issue asks E and nu at
     p.loading.end_strain    = 1e-3;
     p.output.n_history_rows = 200;
+    return p;
+  }
+
+  // Group M1 with Table 4's c and phi, softening after the peak, dx = 5 mm (coarse, for time)
+  CaseParameters mohr_coulomb_ucs()
+  {
+    CaseParameters p      = elastic_ucs();
+    p.rock.model          = "mohr-coulomb";
+    p.rock.cohesion       = 32.99e6;
+    p.rock.friction_angle = 63.68;
+    p.sph.spacing         = 5e-3;
+    p.loading.end_strain  = 0.006;
     return p;
   }
 } // namespace
@@ -56,16 +65,10 @@ TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
 
 TEST(CoupledUcs, MohrCoulombPeakIsTheClosedFormStrength)
 {
-  // Group M1 with Table 4's c and phi, softening after the peak, dx = 5 mm (coarse, for time):
   // the peak must be 2c cos(phi)/(1 - sin(phi)) = 282.2 MPa. 1.5 %: the run at 2.5 mm gives
   // +0.47 % and at 5 mm +0.58 % (dynamic overshoot of the loading and the viscous stress); without
   // the loaded-face correction the end layers yield first and the peak is 27 % low (205.7 MPa).
-  CaseParameters p        = elastic_ucs();
-  p.rock.model            = "mohr-coulomb";
-  p.rock.cohesion         = 32.99e6;
-  p.rock.friction_angle   = 63.68;
-  p.sph.spacing           = 5e-3;
-  p.loading.end_strain    = 0.006;
+  const CaseParameters p  = mohr_coulomb_ucs();
   const double phi        = 63.68 * M_PI / 180;
   const double ucs        = 2 * 32.99e6 * std::cos(phi) / (1 - std::sin(phi));
   Keep rows;
@@ -81,12 +84,7 @@ TEST(CoupledUcs, QuasiStaticFlagSeparatesTheDerivedRateFromAnImpact)
 {
   // the quasi-static check counts the rock's kinetic energy beyond its affine (homogeneous
   // deformation) motion against its elastic energy, from 10 % of the peak load to the peak
-  CaseParameters p        = elastic_ucs();
-  p.rock.model            = "mohr-coulomb";
-  p.rock.cohesion         = 32.99e6;
-  p.rock.friction_angle   = 63.68;
-  p.sph.spacing           = 5e-3;
-  p.loading.end_strain    = 0.006;
+  CaseParameters p = mohr_coulomb_ucs();
   Keep rows;
   const Summary slow = run_case(p, rows);
   // at the rate derived from the wave transit time (40 transits to the expected peak) the waves

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -86,6 +87,15 @@ namespace coupling
     /// name), e.g. {"mean_normal_force_kN", 12.3}; a NaN is written as null.
     std::vector<std::pair<std::string, double>> extra;
   };
+
+  /// The further result `name` of a run (Summary::extra); empty when the run has none.
+  inline std::optional<double> find_extra(const Summary &s, const std::string &name)
+  {
+    for (const auto &[key, value] : s.extra)
+      if (key == name)
+        return value;
+    return std::nullopt;
+  }
 
   /// The full state of a running case as named flat arrays of doubles (a checkpoint): with it, a
   /// case built from the same parameters continues bitwise (same thread count).
