@@ -158,6 +158,9 @@ namespace coupling
     }
     const std::size_t c = (std::size_t(idx[2]) * grid_n_[1] + idx[1]) * grid_n_[0] + idx[0];
     const V3 p{x[0], x[1], x[2]};
+    // flat or concave master: the best face reached across an interior edge, used only when no
+    // face contains the particle's projection (see below)
+    Hit across;
     for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q)
     {
       const int f    = cell_faces_[q];
@@ -204,13 +207,22 @@ namespace coupling
       // edge (below): in the wedge of space between two faces' normals at a convex edge a particle
       // projects onto neither face and would feel no force until the edge had passed its centre,
       // then the full penalty at once (energy created from nothing)
+      // A flat or concave master has the same gap wherever two of its faces meet at a crease
+      // that is convex towards the rock (a ridge): the closest points of a particle over the
+      // crease lie outside both faces, shifted off the crease by about r times the angle between
+      // the faces (the particle's centre is r above the surface). A platen face is flat at the
+      // start, but under load its quads warp by micrometres, and a particle over a mesh vertex
+      // that sank less than its neighbours found no face and felt no force: under an elastic
+      // steel platen such UCS particles lost their contact, went into tension and failed at 6 %
+      // of the strength. So a flat or concave master keeps the faces reached across an interior
+      // edge, clamped to that edge and within r of it along the face, as a fallback taken only
+      // when no face contains the particle's projection (where one does, nothing changes).
       const bool out_xi = std::abs(xi) > 1 + edge_tolerance, out_eta = std::abs(eta) > 1 + edge_tolerance;
       if (out_xi || out_eta)
       {
         // quad edges 0: eta = -1, 1: xi = +1, 2: eta = +1, 3: xi = -1
         const auto &inner = interior_edge_[f];
-        const bool ok     = prm_.convex_master && (!out_xi || inner[xi > 0 ? 1 : 3]) &&
-                        (!out_eta || inner[eta > 0 ? 2 : 0]);
+        const bool ok     = (!out_xi || inner[xi > 0 ? 1 : 3]) && (!out_eta || inner[eta > 0 ? 2 : 0]);
         if (!ok)
           continue;
       }
@@ -230,10 +242,16 @@ namespace coupling
       for (double &v : n)
         v /= nn;
       const V3 r_clamped    = sub(p, xs);
-      // a face reached across an edge counts only within a particle diameter of that edge
-      if ((out_xi || out_eta) && dot(r_clamped, r_clamped) > 4.0 * prm_.radius * prm_.radius)
-        continue;
       const double distance = dot(r_clamped, n);
+      if (out_xi || out_eta)
+      {
+        // a convex master counts a face reached across an edge within a particle diameter of
+        // that edge; a flat or concave one within r of it along the face (tangentially)
+        const double t2 = dot(r_clamped, r_clamped) - distance * distance;
+        if (prm_.convex_master ? dot(r_clamped, r_clamped) > 4.0 * prm_.radius * prm_.radius :
+                                 t2 > prm_.radius * prm_.radius)
+          continue;
+      }
       // a particle more than one diameter behind the face is not in contact with it (it belongs to
       // another face or has tunnelled, which the time-step bound prevents)
       // (a convex master keeps the faces the particle is clear of: the largest plane distance
@@ -242,15 +260,16 @@ namespace coupling
       if (distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > prm_.radius))
         continue;
       const double gap = distance - prm_.radius;
-      if (best.face < 0 || (prm_.convex_master ? gap > best.gap : gap < best.gap))
+      Hit &slot = (!prm_.convex_master && (out_xi || out_eta)) ? across : best;
+      if (slot.face < 0 || (prm_.convex_master ? gap > slot.gap : gap < slot.gap))
       {
-        best.face   = f;
-        best.gap    = gap;
-        best.weight = N;
-        best.normal = n;
+        slot.face   = f;
+        slot.gap    = gap;
+        slot.weight = N;
+        slot.normal = n;
       }
     }
-    return best;
+    return best.face >= 0 ? best : across;
   }
 
   std::size_t PenaltyContact::apply(const ContactParticles &pt, const ContactSurface &s, double dt,

@@ -263,3 +263,50 @@ TEST(ContactConvexApex, NoContactPastTheSurfacesOuterEdge)
   // and just inside the edge it is in contact
   EXPECT_GT(energy_at(s, prm, a - 0.5 * r, 0.5 * W, a - 1.2 * r), 0.0);
 }
+
+TEST(ContactRidge, AParticleOverAWarpedPlatensRidgeKeepsItsContact)
+{
+  // A platen face (flat master, normal +z towards the rock) warped into a shallow ridge along
+  // y at x = 0: z = -s |x|, s = 0.02 (a loaded elastic platen's quads warp by far less; the slope
+  // only sets how far off the crease the closest points fall: about r s). A particle above the
+  // crease projects onto neither face; before the fix it felt no force (a UCS particle over such
+  // a mesh vertex of an elastic platen then lost its contact and failed in tension at 6 % of
+  // the strength). It must be pushed along a face normal by k (r - d), d = z / sqrt(1 + s^2)
+  // its distance to the face planes through the crease, and the force must not vanish anywhere
+  // across the crease.
+  const double r = 1e-3, a = 0.01, W = 0.01, s = 0.02;
+  ContactSurface m;
+  const double nodes[6][3] = {{-a, 0, -s * a}, {0, 0, 0}, {0, W, 0}, {-a, W, -s * a},
+                              {a, 0, -s * a},  {a, W, -s * a}};
+  for (const auto &p : nodes)
+  {
+    m.position.insert(m.position.end(), {p[0], p[1], p[2]});
+    m.velocity.insert(m.velocity.end(), {0, 0, 0});
+    m.mass.push_back(0.0);
+  }
+  m.faces.push_back({{0, 1, 2, 3}}); // left flank, normal (s, 0, 1)/sqrt(1 + s^2)
+  m.faces.push_back({{1, 4, 5, 2}}); // right flank, normal (-s, 0, 1)/sqrt(1 + s^2)
+  ContactParameters prm;
+  prm.stiffness = 1e7;
+  prm.radius    = r;
+  const double z = 0.9 * r; // 0.1 r of penetration
+  std::vector<double> f;
+  energy_at(m, prm, 0.0, 0.5 * W, z, &f);
+  const double expected = prm.stiffness * (r - z / std::sqrt(1 + s * s));
+  // 1e-9 relative: round-off of the Newton projection onto a flat face
+  EXPECT_NEAR(std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), expected, 1e-9 * expected);
+  EXPECT_GT(f[2], 0.0);
+  // across the crease the force never vanishes and follows the distance to the ridge,
+  // (z + s |x|) / sqrt(1 + s^2) (the largest plane distance of a convex crease): within 1 % of
+  // the penetration, since over the crease (|x| < r s) the fallback takes the nearer plane, off
+  // by at most 2 s |x| < 2 r s^2 = 0.08 % of r, 0.8 % of this penetration
+  for (int k = -50; k <= 50; ++k)
+  {
+    const double x           = k * 0.01 * r;
+    const double penetration = r - (z + s * std::abs(x)) / std::sqrt(1 + s * s);
+    energy_at(m, prm, x, 0.5 * W, z, &f);
+    EXPECT_NEAR(std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), prm.stiffness * penetration,
+                0.01 * prm.stiffness * penetration)
+      << "x/r = " << x / r;
+  }
+}

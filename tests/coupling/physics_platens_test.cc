@@ -195,22 +195,16 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
             << platen_c << " m/N; without the contact layers " << without_layer / 1e9
             << " GPa), gauge modulus " << s.youngs_modulus / 1e9 << " GPa, exchange imbalance "
             << s.max_exchange_imbalance << ", steps " << s.n_steps << "\n";
-  // The issue asks for 3 % against the series stiffness; this model does not reach it yet
-  // (measured with the coupled step counting the contact spring: 64.10 GPa against 61.51 GPa,
-  // +4.2 %). The rock is the part that is off: its gauges read 100.89 GPa through these elastic
-  // platens but 97.15 GPa (E within 0.1 %) through rigid ones on the same specimen, so the
-  // elastic platens stiffen the rock's own response by 3.9 % (cause not found: frictionless
-  // contact, quasi-static); with the rigid-platen gauge modulus as the rock's stiffness the
-  // series law still misses by 4.2 %. What holds: the apparent modulus lies between the series
-  // of rock and platens with and without the contact layers, and is well below the rock's, so
-  // the platens' compliance is seen
-  EXPECT_LT(s.platen_modulus, without_layer);
-  EXPECT_GT(s.platen_modulus, expected);
+  // 3 %: the issue's tolerance against the series stiffness (measured +2.7 %: 63.16 against
+  // 61.51 GPa; the rest is the contact layer, whose springs do not all carry the same load).
+  // Before the contact fix of ContactRidge (particles over a platen mesh vertex that sank less
+  // than its neighbours lost their contact) it was +4.2 %, and the gauges read 100.89 GPa.
+  EXPECT_NEAR(s.platen_modulus / expected, 1.0, 0.03);
   // the platens really are compliant here: the check is not the rigid one in disguise
   EXPECT_GT(2.0 * platen_c / series_c, 0.05);
-  // the rock itself reads about its modulus on the gauges through elastic platens (measured
-  // +3.9 % at 10 particles across, see above)
-  EXPECT_NEAR(s.youngs_modulus / c.rock.youngs_modulus, 1.0, 0.15);
+  // the rock itself reads its modulus on the gauges through elastic platens, within the 1 % of
+  // the rigid-platen check (measured 96.88 GPa against 97.07, -0.2 %)
+  EXPECT_NEAR(s.youngs_modulus / c.rock.youngs_modulus, 1.0, 0.01);
 }
 
 TEST(CoupledBts, CurvedJawsSplitTheDiscAboveTheFlatPlatenStrength)
