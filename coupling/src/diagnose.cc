@@ -384,8 +384,11 @@ namespace coupling::diagnose
         d.begin(), d.end(), [](const Datum &x) { return x.kind == Datum::strength; }));
     }
 
+    /// Fits `effects` (with the base strength refitted or not) to `data`, from the warm values
+    /// given and across the effects' boxes; `polish` as in fit().
     Fitted fit_model(const Study &s, const EffectSet &effects, const bool refit,
-                     const std::vector<Datum> &data, const std::map<std::string, double> &warm = {})
+                     const std::vector<Datum> &data, const std::map<std::string, double> &warm = {},
+                     const bool polish = true)
     {
       const Surrogate model(s.groups, effects, refit);
       Fitted f;
@@ -415,7 +418,7 @@ namespace coupling::diagnose
             starts.push_back(st);
         }
       f.result = fit(
-        model, data, [&s](const Datum &d) { return s.noise(d); }, starts);
+        model, data, [&s](const Datum &d) { return s.noise(d); }, starts, polish);
       f.bic = f.result.chi2 +
               static_cast<double>(f.parameters.size()) * std::log(static_cast<double>(data.size()));
       for (std::size_t i = 0; i < f.parameters.size(); ++i)
@@ -502,8 +505,9 @@ namespace coupling::diagnose
           if (d.source % n_folds != k)
             train.push_back(d);
         std::vector<double> p = model.initial();
+        // from the all-data optimum, one pass: a fold moves it by a fraction of its SE
         if (full != nullptr && !full->parameters.empty())
-          p = fit_model(s, effects, refit, train, values_of(*full)).result.values;
+          p = fit_model(s, effects, refit, train, values_of(*full), false).result.values;
         for (std::size_t i = 0; i < s.all.size(); ++i)
           if (s.all[i].source % n_folds == k)
             pred[i] = model.predict(s.all[i], p);
@@ -810,6 +814,7 @@ namespace coupling::diagnose
 
     // single candidates
     std::map<std::string, Fitted> single;
+    std::map<std::string, std::vector<double>> single_heldout; // held-out predictions, by effect
     for (const auto &e : effect_names())
     {
       Candidate c;
@@ -831,7 +836,12 @@ namespace coupling::diagnose
       c.delta_bic_baseline = base.bic - f.bic;
       c.error_after        = rms_of(s, m, f.result.values, s.all).norm;
       // held-out check only where the effect has positive evidence (it is the costly part)
-      c.heldout_after = c.delta_bic > 0 ? heldout(s, {e}, true, &f).norm : std::nan("");
+      c.heldout_after = std::nan("");
+      if (c.delta_bic > 0)
+      {
+        single_heldout[e] = heldout_predictions(s, {e}, true, &f);
+        c.heldout_after   = rms_of(s, s.all, single_heldout[e]).norm;
+      }
       if (f.at_bound)
         c.reason = "a parameter sits at a bound of its range: the data do not show the effect";
       out.candidates.push_back(c);
@@ -885,9 +895,12 @@ namespace coupling::diagnose
     std::vector<double> base_pred;
     for (const auto &d : s.all)
       base_pred.push_back(base_model.predict(d, {}));
-    const std::vector<double> ext_ho_pred =
-      current.parameters.empty() ? base_pred
-                                 : heldout_predictions(s, current.effects, current.refit, &current);
+    // (one effect named: its candidate's held-out predictions, the same fit from the same optimum)
+    std::vector<double> ext_ho_pred = base_pred;
+    if (chosen.size() == 1 && single_heldout.count(*chosen.begin()))
+      ext_ho_pred = single_heldout.at(*chosen.begin());
+    else if (!current.parameters.empty())
+      ext_ho_pred = heldout_predictions(s, current.effects, current.refit, &current);
     Rms ext_ho             = rms_of(s, s.all, ext_ho_pred);
     const Discrepancy disc = discrepancy(s, base_pred, ext_ho_pred, 3.0);
 
