@@ -234,6 +234,10 @@ namespace coupling::diagnose
         d.where    = r.where;
         all.push_back(d);
       }
+      const auto n_compressive = std::count_if(data.curves.begin(), data.curves.end(),
+                                               [](const Curve &c) { return c.test != "BTS"; });
+      const int n_points =
+        std::clamp(160 / static_cast<int>(std::max<std::ptrdiff_t>(n_compressive, 1)), 8, 20);
       for (const auto &c : data.curves)
       {
         const int src        = source++;
@@ -261,11 +265,13 @@ namespace coupling::diagnose
         p.strain_rate  = strain_rate_of(c);
         all.push_back(p);
         curve_sd[src] = curve_noise(c);
-        // pre-peak points between 5 and 90 % of the peak force, about 20 evenly in force
+        // pre-peak points between 5 and 90 % of the peak force, evenly in force: about 20 a
+        // curve, fewer (down to 8) where a long programme would give more than 160 in all (its
+        // information is in the peaks; the fit's cost grows with the points)
         std::size_t last = 0;
-        for (int k = 0; k < 20; ++k)
+        for (int k = 0; k < n_points; ++k)
         {
-          const double target = fp * (0.05 + 0.85 * k / 19.0);
+          const double target = fp * (0.05 + 0.85 * k / (n_points - 1.0));
           std::size_t best    = 0;
           for (std::size_t i = 0; i <= ip; ++i)
             if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
