@@ -739,15 +739,22 @@ namespace coupling::diagnose
     out.n_curve_points      = static_cast<int>(s.all.size()) - out.n_strength;
     const bool has_strength = out.n_strength > 0;
 
-    // strength noise: replicate specimens (same test, group, confinement) if there are enough
+    // strength noise: the relative scatter of replicate specimens if there are enough: strength
+    // rows of one test, group and confinement (BTS: of one group), and curve peaks of one test
+    // condition (also L/D, volume and strain rate)
     {
       std::map<std::string, std::vector<double>> reps;
-      for (const auto &r : data.strengths)
-      {
-        std::ostringstream k;
-        k << r.test << '|' << r.group << '|' << std::round(r.sigma3 * 10);
-        reps[k.str()].push_back(r.test == "BTS" ? -r.sigma3 : r.sigma1);
-      }
+      for (const auto &d : s.all)
+        if (d.kind == Datum::strength)
+        {
+          std::ostringstream k;
+          if (d.source < static_cast<int>(data.strengths.size()))
+            k << d.test << '|' << d.group << '|'
+              << (d.test == "BTS" ? 0L : std::lround(d.sigma3 * 10));
+          else
+            k << "curves|" << d.condition;
+          reps[k.str()].push_back(d.measured);
+        }
       double ss = 0;
       int dof   = 0;
       for (const auto &[k, v] : reps)
