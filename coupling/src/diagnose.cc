@@ -234,6 +234,10 @@ namespace coupling::diagnose
         d.where    = r.where;
         all.push_back(d);
       }
+      const auto n_compressive = std::count_if(data.curves.begin(), data.curves.end(),
+                                               [](const Curve &c) { return c.test != "BTS"; });
+      const int n_points =
+        std::clamp(160 / static_cast<int>(std::max<std::ptrdiff_t>(n_compressive, 1)), 8, 20);
       for (const auto &c : data.curves)
       {
         const int src        = source++;
@@ -261,11 +265,13 @@ namespace coupling::diagnose
         p.strain_rate  = strain_rate_of(c);
         all.push_back(p);
         curve_sd[src] = curve_noise(c);
-        // pre-peak points between 5 and 90 % of the peak force, about 20 evenly in force
+        // pre-peak points between 5 and 90 % of the peak force, evenly in force: about 20 a
+        // curve, fewer (down to 8) where a long programme would give more than 160 in all (its
+        // information is in the peaks; the fit's cost grows with the points)
         std::size_t last = 0;
-        for (int k = 0; k < 20; ++k)
+        for (int k = 0; k < n_points; ++k)
         {
-          const double target = fp * (0.05 + 0.85 * k / 19.0);
+          const double target = fp * (0.05 + 0.85 * k / (n_points - 1.0));
           std::size_t best    = 0;
           for (std::size_t i = 0; i <= ip; ++i)
             if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
@@ -384,8 +390,11 @@ namespace coupling::diagnose
         d.begin(), d.end(), [](const Datum &x) { return x.kind == Datum::strength; }));
     }
 
+    /// Fits `effects` (with the base strength refitted or not) to `data`, from the warm values
+    /// given and across the effects' boxes; `polish` as in fit().
     Fitted fit_model(const Study &s, const EffectSet &effects, const bool refit,
-                     const std::vector<Datum> &data, const std::map<std::string, double> &warm = {})
+                     const std::vector<Datum> &data, const std::map<std::string, double> &warm = {},
+                     const bool polish = true)
     {
       const Surrogate model(s.groups, effects, refit);
       Fitted f;
@@ -415,7 +424,7 @@ namespace coupling::diagnose
             starts.push_back(st);
         }
       f.result = fit(
-        model, data, [&s](const Datum &d) { return s.noise(d); }, starts);
+        model, data, [&s](const Datum &d) { return s.noise(d); }, starts, polish);
       f.bic = f.result.chi2 +
               static_cast<double>(f.parameters.size()) * std::log(static_cast<double>(data.size()));
       for (std::size_t i = 0; i < f.parameters.size(); ++i)
@@ -502,8 +511,9 @@ namespace coupling::diagnose
           if (d.source % n_folds != k)
             train.push_back(d);
         std::vector<double> p = model.initial();
+        // from the all-data optimum, one pass: a fold moves it by a fraction of its SE
         if (full != nullptr && !full->parameters.empty())
-          p = fit_model(s, effects, refit, train, values_of(*full)).result.values;
+          p = fit_model(s, effects, refit, train, values_of(*full), false).result.values;
         for (std::size_t i = 0; i < s.all.size(); ++i)
           if (s.all[i].source % n_folds == k)
             pred[i] = model.predict(s.all[i], p);
@@ -729,15 +739,22 @@ namespace coupling::diagnose
     out.n_curve_points      = static_cast<int>(s.all.size()) - out.n_strength;
     const bool has_strength = out.n_strength > 0;
 
-    // strength noise: replicate specimens (same test, group, confinement) if there are enough
+    // strength noise: the relative scatter of replicate specimens if there are enough: strength
+    // rows of one test, group and confinement (BTS: of one group), and curve peaks of one test
+    // condition (also L/D, volume and strain rate)
     {
       std::map<std::string, std::vector<double>> reps;
-      for (const auto &r : data.strengths)
-      {
-        std::ostringstream k;
-        k << r.test << '|' << r.group << '|' << std::round(r.sigma3 * 10);
-        reps[k.str()].push_back(r.test == "BTS" ? -r.sigma3 : r.sigma1);
-      }
+      for (const auto &d : s.all)
+        if (d.kind == Datum::strength)
+        {
+          std::ostringstream k;
+          if (d.source < static_cast<int>(data.strengths.size()))
+            k << d.test << '|' << d.group << '|'
+              << (d.test == "BTS" ? 0L : std::lround(d.sigma3 * 10));
+          else
+            k << "curves|" << d.condition;
+          reps[k.str()].push_back(d.measured);
+        }
       double ss = 0;
       int dof   = 0;
       for (const auto &[k, v] : reps)
@@ -810,6 +827,7 @@ namespace coupling::diagnose
 
     // single candidates
     std::map<std::string, Fitted> single;
+    std::map<std::string, std::vector<double>> single_heldout; // held-out predictions, by effect
     for (const auto &e : effect_names())
     {
       Candidate c;
@@ -831,7 +849,12 @@ namespace coupling::diagnose
       c.delta_bic_baseline = base.bic - f.bic;
       c.error_after        = rms_of(s, m, f.result.values, s.all).norm;
       // held-out check only where the effect has positive evidence (it is the costly part)
-      c.heldout_after = c.delta_bic > 0 ? heldout(s, {e}, true, &f).norm : std::nan("");
+      c.heldout_after = std::nan("");
+      if (c.delta_bic > 0)
+      {
+        single_heldout[e] = heldout_predictions(s, {e}, true, &f);
+        c.heldout_after   = rms_of(s, s.all, single_heldout[e]).norm;
+      }
       if (f.at_bound)
         c.reason = "a parameter sits at a bound of its range: the data do not show the effect";
       out.candidates.push_back(c);
@@ -885,9 +908,12 @@ namespace coupling::diagnose
     std::vector<double> base_pred;
     for (const auto &d : s.all)
       base_pred.push_back(base_model.predict(d, {}));
-    const std::vector<double> ext_ho_pred =
-      current.parameters.empty() ? base_pred
-                                 : heldout_predictions(s, current.effects, current.refit, &current);
+    // (one effect named: its candidate's held-out predictions, the same fit from the same optimum)
+    std::vector<double> ext_ho_pred = base_pred;
+    if (chosen.size() == 1 && single_heldout.count(*chosen.begin()))
+      ext_ho_pred = single_heldout.at(*chosen.begin());
+    else if (!current.parameters.empty())
+      ext_ho_pred = heldout_predictions(s, current.effects, current.refit, &current);
     Rms ext_ho             = rms_of(s, s.all, ext_ho_pred);
     const Discrepancy disc = discrepancy(s, base_pred, ext_ho_pred, 3.0);
 

@@ -310,7 +310,7 @@ namespace coupling::diagnose
 
   FitResult fit(const Surrogate &model, const std::vector<Datum> &data,
                 const std::function<double(const Datum &)> &noise,
-                const std::vector<std::vector<double>> &starts)
+                const std::vector<std::vector<double>> &starts, const bool polish)
   {
     FitContext c{&model, &data, {}, 0};
     for (const auto &d : data)
@@ -347,24 +347,26 @@ namespace coupling::diagnose
         failure = e.what();
         continue;
       }
-      auto [x, chi2] = first;
-      // a second pass from the first optimum with a fresh trust region polishes the minimum
+      if (first.second < best)
+      {
+        best   = first.second;
+        x_best = first.first;
+      }
+    }
+    // a second pass from the best optimum with a fresh trust region polishes the minimum
+    if (polish && !x_best.empty())
+    {
       try
       {
-        auto [x2, chi22] = pounders(c, x);
-        if (chi22 < chi2)
+        auto [x2, chi22] = pounders(c, x_best);
+        if (chi22 < best)
         {
-          x    = x2;
-          chi2 = chi22;
+          x_best = x2;
+          best   = chi22;
         }
       }
       catch (const std::runtime_error &)
       {}
-      if (chi2 < best)
-      {
-        best   = chi2;
-        x_best = x;
-      }
     }
     if (x_best.empty())
       throw std::runtime_error(failure);

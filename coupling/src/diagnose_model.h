@@ -95,11 +95,11 @@ namespace coupling::diagnose
   };
 
   /// Least squares of (predict - measured)/noise over `data` with PETSc TAO (POUNDERS, bounded),
-  /// from each start in `starts` (the best is kept). `noise(d)` is the standard deviation of a
-  /// datum.
+  /// from each start in `starts`; the best optimum is kept and, with `polish`, refined by a second
+  /// run with a fresh trust region. `noise(d)` is the standard deviation of a datum.
   FitResult fit(const Surrogate &model, const std::vector<Datum> &data,
                 const std::function<double(const Datum &)> &noise,
-                const std::vector<std::vector<double>> &starts);
+                const std::vector<std::vector<double>> &starts, bool polish = true);
 
   /// What one coupled run gives the diagnosis.
   struct CoupledPeak

@@ -4,6 +4,23 @@
 /// replicate scatter and load-frame curves with noise, with hidden effects switched on. It is
 /// written apart from coupling/src/diagnose*: no shared code path (its own envelope formulas, a
 /// bisection for the Hoek-Brown tensile strength, a numerical integration of the toe compliance).
+///
+/// The test programme (what a laboratory would run; every specimen draws its own scatter):
+/// - strength.csv, always: standard 50 x 100 mm specimens (L/D = 2) at the quasi-static rate
+///   1e-5 /s, three each of BTS, UCS and CTCS at 5, 10, 20 and 40 MPa confinement (18 rows);
+/// - curves/, load-frame records, displacement at the platen, quasi-static UCS of 50 x 100 mm
+///   specimens unless the study is of
+///   - loading rate: three UCS specimens at each of six strain rates a decade apart, 1e-6 to
+///     1e-1 /s (18 curves; a rate study spans the quasi-static range with replicates at every
+///     rate, not one specimen at the highest);
+///   - end friction: specimens of two slenderness ratios at one volume, six at L/D = 2
+///     (50 x 100 mm) and twelve at L/D = 1/2 (79.4 x 39.7 mm), the short ones where friction
+///     shows (how platen friction is identified in practice);
+///   - size (heterogeneity): three specimens of each of four diameters 25, 50, 100 and 150 mm at
+///     L/D = 2 (a volume ratio of 216 for the Weibull modulus);
+///   - otherwise: two UCS and one CTCS at 10 MPa.
+/// Noise: 2 % relative scatter of every specimen's strength (Truth::strength_scatter) and 0.2 % of
+/// the peak displacement on every curve row (Truth::curve_noise).
 
 #include <array>
 #include <cmath>
@@ -123,16 +140,28 @@ namespace discovery
       return;
     fs::create_directories(dir + "/curves");
     int k = 0;
-    // (confinement, strain rate, diameter, length)
-    std::vector<std::array<double, 4>> tests = {
-      {0, 1e-5, 50, 100}, {0, 1e-5, 50, 100}, {10, 1e-5, 50, 100}};
+    // (confinement, strain rate, diameter, length): the curve programme (file comment)
+    std::vector<std::array<double, 4>> tests;
+    const auto replicates = [&tests](const std::array<double, 4> &condition, const int n) {
+      for (int i = 0; i < n; ++i)
+        tests.push_back(condition);
+    };
     if (t.effects.count("loading_rate"))
-      tests = {{0, 1e-5, 50, 100}, {0, 1e-3, 50, 100}, {0, 1e-1, 50, 100}, {10, 1e-4, 50, 100}};
-    if (t.effects.count("end_friction")) // L/D = 2, 1, 1/2 at one volume (no size effect mixed in)
-      tests = {{0, 1e-5, 50, 100},    {0, 1e-5, 63.0, 63.0},   {0, 1e-5, 63.0, 63.0},
-               {0, 1e-5, 79.37, 39.69}, {0, 1e-5, 79.37, 39.69}, {0, 1e-5, 79.37, 39.69}};
-    if (t.effects.count("heterogeneity"))
-      tests = {{0, 1e-5, 25, 50}, {0, 1e-5, 50, 100}, {0, 1e-5, 100, 200}, {10, 1e-5, 50, 100}};
+      for (double rate : {1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1})
+        replicates({{0, rate, 50, 100}}, 3);
+    else if (t.effects.count("end_friction"))
+    { // L/D = 2 and 1/2 at one volume (no size effect mixed in)
+      replicates({{0, 1e-5, 50, 100}}, 6);
+      replicates({{0, 1e-5, 79.37, 39.69}}, 12);
+    }
+    else if (t.effects.count("heterogeneity"))
+      for (double D : {25.0, 50.0, 100.0, 150.0})
+        replicates({{0, 1e-5, D, 2 * D}}, 3);
+    else
+    {
+      replicates({{0, 1e-5, 50, 100}}, 2);
+      replicates({{10, 1e-5, 50, 100}}, 1);
+    }
     for (auto [s3, rate, D, L] : tests)
     {
       const double A = 3.14159265358979323846 * D * D / 4;
