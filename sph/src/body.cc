@@ -49,11 +49,21 @@ namespace sph
         throw std::invalid_argument("sph::Body: " + message);
     }
 
-    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w.
+    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w (antisymmetric),
+    /// in closed form (Cayley transform): with w/2 = A = [a]_x (A v = a x v) and A^3 = -|a|^2 A,
+    /// R = I + 2 (A + A^2) / (1 + |a|^2), A^2 = a a^T - |a|^2 I. No inverse, no division by a
+    /// determinant.
     inline Tensor3 hughes_winget(const Tensor3 &w)
     {
-      const Tensor3 I = Tensor3::Identity();
-      return (I - 0.5 * w).inverse() * (I + 0.5 * w);
+      const Eigen::Vector3d a(0.5 * w(2, 1), 0.5 * w(0, 2), 0.5 * w(1, 0));
+      const double          a2 = a.squaredNorm(), k = 2.0 / (1.0 + a2);
+      Tensor3               R;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          R(r, c) = k * (0.5 * w(r, c) + a[r] * a[c]);
+      for (int d = 0; d < 3; ++d)
+        R(d, d) += 1.0 - k * a2;
+      return R;
     }
 
     /// Sum over the pairs of particle i of V_j (f_j - f_i) (x) grad_i W_ij: the gradient of the
