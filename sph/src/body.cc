@@ -488,28 +488,42 @@ namespace sph
     const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
     const bool        av    = alpha > 0 || beta > 0;
     const double      pa    = pressure_;
-    const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
-    // what the pair force reads of one particle, copied into locals: the loop writes f_int[j]
-    // through double pointers, after which the compiler must reload every double it read from
-    // the particle arrays; i's copy is made once per particle, not once per pair
+    // the arrays the pair force reads, as plain pointers held by value in the lambdas below: a
+    // captured reference to a std::vector costs two or three dependent loads per use, and
+    // there are too few registers to keep them all
+    const double      *V   = (tl ? p_.volume0 : p_.volume).data();
+    const Tensor<dim> *Q   = Q_.data();
+    const Tensor<dim> *F   = p_.F.data();
+    const Vector<dim> *x   = p_.x.data();
+    const Vector<dim> *v   = p_.v.data();
+    const Vector<dim> *x0  = p_.x0.data();
+    const double      *h   = p_.h.data();
+    const double      *rho = p_.density.data();
+    const double      *m   = p_.mass.data();
+    const Vector<dim> *grad_w = grad_w_.data();
+    const double      *hgf = hg_factor_.data();
+    const std::int32_t *second = pairs_.second.data(), *pair_begin = pair_begin_.data();
+    Vector<dim>        *f_int  = p_.f_int.data();
+    // what the pair force reads of particle i, copied into locals once per particle: the loop
+    // writes f_int[j] through double pointers, after which the compiler must reload every double
+    // it read from the particle arrays
     struct Side
     {
       Tensor<dim> Q, F;
       Vector<dim> x, v, x0;
       double      h, density, mass, V;
     };
-    const auto side = [&](const int i) __attribute__((always_inline)) {
-      return Side{Q_[i], p_.F[i], p_.x[i], p_.v[i], p_.x0[i], p_.h[i], p_.density[i],
-                  p_.mass[i], V[i]};
+    const auto side = [=](const int i) __attribute__((always_inline)) {
+      return Side{Q[i], F[i], x[i], v[i], x0[i], h[i], rho[i], m[i], V[i]};
     };
     // force on i of pair p = (i, j) (-force on j), with its viscous and hourglass powers
     // (always inlined: called at two places, and a call per pair costs ~70 instructions).
     // Written in scalars: Eigen's packets of two on 3-vectors cost more in shuffles than they save
-    const auto pair_force = [&](const std::int32_t p, const Side &si, const int j,
+    const auto pair_force = [=](const std::int32_t p, const Side &si, const int j,
                                 double (&f)[dim], double &power,
                                 double &hg_power) __attribute__((always_inline)) {
-      const Vector<dim> &gw = grad_w_[p];
-      const Vector<dim> &xj = p_.x[j], &vj = p_.v[j];
+      const Vector<dim> &gw = grad_w[p];
+      const Vector<dim> &xj = x[j], &vj = v[j];
       double             xij[dim], vij[dim], r2 = 0, vr = 0;
       for (int d = 0; d < dim; ++d)
         {
@@ -521,12 +535,12 @@ namespace sph
       // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
       // (Q = P L without the volume: one sum of tensors and one product by V_i V_j per pair)
       const double       vv = si.V * V[j];
-      const Tensor<dim> &Qj = Q_[j];
+      const Tensor<dim> &Qj = Q[j];
       for (int r = 0; r < dim; ++r)
         {
           double s = 0;
-          for (int c = 0; c < dim; ++c)
-            s += (si.Q(r, c) + Qj(r, c)) * gw[c];
+          for (int k = 0; k < dim; ++k)
+            s += (si.Q(r, k) + Qj(r, k)) * gw[k];
           f[r] = vv * s;
         }
       // the viscous and the hourglass forces both act along x_ij: f += (s_av + s_hg) x_ij, and
@@ -534,13 +548,13 @@ namespace sph
       double s_av = 0, s_hg = 0;
       if (av && vr < 0 && r2 > 0)
         {
-          const double hb  = 0.5 * (si.h + p_.h[j]);
+          const double hb  = 0.5 * (si.h + h[j]);
           const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
-          const double rho = 0.5 * (si.density + p_.density[j]);
-          const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
+          const double rho_ij = 0.5 * (si.density + rho[j]);
+          const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho_ij;
           // grad W along the current pair direction, magnitude of the cached gradient:
           // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
-          s_av = si.mass * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2);
+          s_av = si.mass * m[j] * Pi * std::sqrt(gw.squaredNorm() / r2);
         }
       if (hg > 0 && r2 > 0)
         {
@@ -550,17 +564,17 @@ namespace sph
           // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
           // acts along x / r: on i -(g / r) x = -factor (err . x) / r^2 x = s_hg x_ij with
           // s_hg = -factor (e . x_ij) / r^2, e = -err = (F_i + F_j) X / 2 + x_ij
-          const Tensor<dim> &Fj  = p_.F[j];
-          const Vector<dim> &x0j = p_.x0[j];
+          const Tensor<dim> &Fj  = F[j];
+          const Vector<dim> &x0j = x0[j];
           double             e_dot = 0;
           for (int r = 0; r < dim; ++r)
             {
               double y = 0;
-              for (int c = 0; c < dim; ++c)
-                y += (si.F(r, c) + Fj(r, c)) * (x0j[c] - si.x0[c]);
+              for (int k = 0; k < dim; ++k)
+                y += (si.F(r, k) + Fj(r, k)) * (x0j[k] - si.x0[k]);
               e_dot += (0.5 * y + xij[r]) * xij[r];
             }
-          s_hg = -hg_factor_[p] * e_dot / r2;
+          s_hg = -hgf[p] * e_dot / r2;
         }
       const double s = s_av + s_hg;
       for (int d = 0; d < dim; ++d)
@@ -606,16 +620,16 @@ namespace sph
           const double *share     = cross_share_[t].data();
           for (std::int32_t i = b; i < e; ++i)
             {
-              Vector<dim> fi = p_.f_int[i]; // its terms as second particle so far
+              Vector<dim> fi = f_int[i]; // its terms as second particle so far
               const Side  si = side(i);
-              for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+              for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p)
                 {
-                  const std::int32_t j = pairs_.second[p];
+                  const std::int32_t j = second[p];
                   if (j < e)
                     {
                       double power, hg_power, f[dim];
                       pair_force(p, si, j, f, power, hg_power);
-                      Vector<dim> &fj = p_.f_int[j];
+                      Vector<dim> &fj = f_int[j];
                       for (int d = 0; d < dim; ++d)
                         {
                           fi[d] += f[d];
@@ -633,7 +647,7 @@ namespace sph
                       share += share_size;
                     }
                 }
-              p_.f_int[i] = fi;
+              f_int[i] = fi;
               if (pa != 0.0)
                 {
                   const Vector<dim> a =
