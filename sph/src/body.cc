@@ -491,17 +491,17 @@ namespace sph
     // the arrays the pair force reads, as plain pointers held by value in the lambdas below: a
     // captured reference to a std::vector costs two or three dependent loads per use, and
     // there are too few registers to keep them all
-    const double      *V   = (tl ? p_.volume0 : p_.volume).data();
-    const Tensor<dim> *Q   = Q_.data();
-    const Tensor<dim> *F   = p_.F.data();
-    const Vector<dim> *x   = p_.x.data();
-    const Vector<dim> *v   = p_.v.data();
-    const Vector<dim> *x0  = p_.x0.data();
-    const double      *h   = p_.h.data();
-    const double      *rho = p_.density.data();
-    const double      *m   = p_.mass.data();
-    const Vector<dim> *grad_w = grad_w_.data();
-    const double      *hgf = hg_factor_.data();
+    const double       *V      = (tl ? p_.volume0 : p_.volume).data();
+    const Tensor<dim>  *Q      = Q_.data();
+    const Tensor<dim>  *F      = p_.F.data();
+    const Vector<dim>  *x      = p_.x.data();
+    const Vector<dim>  *v      = p_.v.data();
+    const Vector<dim>  *x0     = p_.x0.data();
+    const double       *h      = p_.h.data();
+    const double       *rho    = p_.density.data();
+    const double       *m      = p_.mass.data();
+    const Vector<dim>  *grad_w = grad_w_.data();
+    const double       *hgf    = hg_factor_.data();
     const std::int32_t *second = pairs_.second.data(), *pair_begin = pair_begin_.data();
     Vector<dim>        *f_int  = p_.f_int.data();
     // what the pair force reads of particle i, copied into locals once per particle: the loop
@@ -548,10 +548,10 @@ namespace sph
       double s_av = 0, s_hg = 0;
       if (av && vr < 0 && r2 > 0)
         {
-          const double hb  = 0.5 * (si.h + h[j]);
-          const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
+          const double hb     = 0.5 * (si.h + h[j]);
+          const double mu     = hb * vr / (r2 + 0.01 * hb * hb);
           const double rho_ij = 0.5 * (si.density + rho[j]);
-          const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho_ij;
+          const double Pi     = (-alpha * c * mu + beta * mu * mu) / rho_ij;
           // grad W along the current pair direction, magnitude of the cached gradient:
           // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
           s_av = si.mass * m[j] * Pi * std::sqrt(gw.squaredNorm() / r2);

@@ -303,13 +303,14 @@ namespace sph::rock
       return pl;
     };
     // Bounds from the invariants alone: with the mean stress m, q = sqrt(J2) and the deviatoric
-    // principal stresses d0 >= d1 >= d2, d0 - d2 <= 2 q, |d1| <= q / sqrt(3) and d0 <= 2 q / sqrt(3)
-    // (Lode angle within +-30 deg), so f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
-    // <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi) and s0 <= m + 2 q / sqrt(3).
+    // principal stresses d0 >= d1 >= d2, the Lode angle within +-30 deg gives d0 - d2 <= 2 q,
+    // |d1| <= q / sqrt(3) and d0 <= 2 q / sqrt(3), so
+    //   f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
+    //     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
     // Both below the surfaces by a margin far above round-off: the trial is admissible.
     const auto surely_elastic = [&prm](const Tensor3 &t, const double factor) {
-      const double m   = t.trace() / 3.0;
-      double       dd  = 0; // dev : dev = 2 J2
+      const double m  = t.trace() / 3.0;
+      double       dd = 0; // dev : dev = 2 J2
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
           {
