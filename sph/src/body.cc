@@ -53,7 +53,7 @@ namespace sph
     /// in closed form (Cayley transform): with w/2 = A = [a]_x (A v = a x v) and A^3 = -|a|^2 A,
     /// R = I + 2 (A + A^2) / (1 + |a|^2), A^2 = a a^T - |a|^2 I. No inverse, no division by a
     /// determinant.
-    inline Tensor3 hughes_winget(const Tensor3 &w)
+    inline __attribute__((always_inline)) Tensor3 hughes_winget(const Tensor3 &w)
     {
       const Eigen::Vector3d a(0.5 * w(2, 1), 0.5 * w(0, 2), 0.5 * w(1, 0));
       const double          a2 = a.squaredNorm(), k = 2.0 / (1.0 + a2);
@@ -64,6 +64,24 @@ namespace sph
       for (int d = 0; d < 3; ++d)
         R(d, d) += 1.0 - k * a2;
       return R;
+    }
+
+    /// Cofactor matrix cof(F) = det(F) F^{-T}, without a division (cyclic index form in 3-D);
+    /// det(F) is the dot product of a row of F with the same row of cof(F).
+    template <int dim>
+    inline Tensor<dim> cofactor(const Tensor<dim> &F)
+    {
+      Tensor<dim> C;
+      if constexpr (dim == 2)
+        C << F(1, 1), -F(1, 0), -F(0, 1), F(0, 0);
+      else
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            {
+              const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+              C(r, c)      = F(r1, c1) * F(r2, c2) - F(r1, c2) * F(r2, c1);
+            }
+      return C;
     }
 
     /// Sum over the pairs of particle i of V_j (f_j - f_i) (x) grad_i W_ij: the gradient of the
@@ -420,7 +438,8 @@ namespace sph
                   const Tensor3     R  = hughes_winget(0.5 * (gg - gg.transpose()));
                   const Tensor3     rotated = R * p_.stress[i] * R.transpose();
                   const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
-                  const double J = F.determinant();
+                  const Tensor<dim> C = cofactor<dim>(F); // J F^{-T}
+                  const double      J = F.row(0).dot(C.row(0));
                   stress_work_[i] +=
                     p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
                   p_.stress[i]  = up.stress;
@@ -429,9 +448,8 @@ namespace sph
                   p_.F[i]       = F;
                   p_.volume[i]  = p_.volume0[i] * J;
                   p_.density[i] = p_.mass[i] / p_.volume[i];
-                  // first Piola-Kirchhoff P = J sigma F^{-T}
-                  const Tensor<dim> P =
-                    J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
+                  // first Piola-Kirchhoff P = J sigma F^{-T} = sigma cof(F)
+                  const Tensor<dim> P = up.stress.template topLeftCorner<dim, dim>() * C;
                   Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
                 }
             }
