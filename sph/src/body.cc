@@ -49,11 +49,39 @@ namespace sph
         throw std::invalid_argument("sph::Body: " + message);
     }
 
-    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w.
-    inline Tensor3 hughes_winget(const Tensor3 &w)
+    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w (antisymmetric),
+    /// in closed form (Cayley transform): with w/2 = A = [a]_x (A v = a x v) and A^3 = -|a|^2 A,
+    /// R = I + 2 (A + A^2) / (1 + |a|^2), A^2 = a a^T - |a|^2 I. No inverse, no division by a
+    /// determinant.
+    inline __attribute__((always_inline)) Tensor3 hughes_winget(const Tensor3 &w)
     {
-      const Tensor3 I = Tensor3::Identity();
-      return (I - 0.5 * w).inverse() * (I + 0.5 * w);
+      const Eigen::Vector3d a(0.5 * w(2, 1), 0.5 * w(0, 2), 0.5 * w(1, 0));
+      const double          a2 = a.squaredNorm(), k = 2.0 / (1.0 + a2);
+      Tensor3               R;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          R(r, c) = k * (0.5 * w(r, c) + a[r] * a[c]);
+      for (int d = 0; d < 3; ++d)
+        R(d, d) += 1.0 - k * a2;
+      return R;
+    }
+
+    /// Cofactor matrix cof(F) = det(F) F^{-T}, without a division (cyclic index form in 3-D);
+    /// det(F) is the dot product of a row of F with the same row of cof(F).
+    template <int dim>
+    inline Tensor<dim> cofactor(const Tensor<dim> &F)
+    {
+      Tensor<dim> C;
+      if constexpr (dim == 2)
+        C << F(1, 1), -F(1, 0), -F(0, 1), F(0, 0);
+      else
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            {
+              const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+              C(r, c)      = F(r1, c1) * F(r2, c2) - F(r1, c2) * F(r2, c1);
+            }
+      return C;
     }
 
     /// Sum over the pairs of particle i of V_j (f_j - f_i) (x) grad_i W_ij: the gradient of the
@@ -368,17 +396,24 @@ namespace sph
                   for (int r = 0; r < dim; ++r)
                     for (int c = 0; c < dim; ++c)
                       a[r][c] = p_.F[i](r, c);
-                  const Vector<dim> xi = x[i];
+                  // i's position and volume in locals: the stores to p_.F[j] below are through
+                  // double pointers and would make the compiler reload them at every pair
+                  const Vector<dim> xi  = x[i];
+                  const double      V0i = V0[i];
                   for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
                     {
                       const std::int32_t j  = pairs_.second[p];
                       const Vector<dim> &g  = grad_w_[p];
                       const Vector<dim> &xj = x[j];
-                      double             di[dim], dj[dim];
+                      const double       V0j = V0[j];
+                      // di = V0_j d, dj = V0_i d with d = x_j - x_i (the same bits as
+                      // -V0_i (x_i - x_j): IEEE negation and subtraction are exact mirrors)
+                      double di[dim], dj[dim];
                       for (int r = 0; r < dim; ++r)
                         {
-                          di[r] = V0[j] * (xj[r] - xi[r]);
-                          dj[r] = -V0[i] * (xi[r] - xj[r]);
+                          const double d = xj[r] - xi[r];
+                          di[r]          = V0j * d;
+                          dj[r]          = V0i * d;
                         }
                       for (int r = 0; r < dim; ++r)
                         for (int c = 0; c < dim; ++c)
@@ -403,7 +438,8 @@ namespace sph
                   const Tensor3     R  = hughes_winget(0.5 * (gg - gg.transpose()));
                   const Tensor3     rotated = R * p_.stress[i] * R.transpose();
                   const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
-                  const double J = F.determinant();
+                  const Tensor<dim> C = cofactor<dim>(F); // J F^{-T}
+                  const double      J = F.row(0).dot(C.row(0));
                   stress_work_[i] +=
                     p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
                   p_.stress[i]  = up.stress;
@@ -412,9 +448,8 @@ namespace sph
                   p_.F[i]       = F;
                   p_.volume[i]  = p_.volume0[i] * J;
                   p_.density[i] = p_.mass[i] / p_.volume[i];
-                  // first Piola-Kirchhoff P = J sigma F^{-T}
-                  const Tensor<dim> P =
-                    J * up.stress.template topLeftCorner<dim, dim>() * F.inverse().transpose();
+                  // first Piola-Kirchhoff P = J sigma F^{-T} = sigma cof(F)
+                  const Tensor<dim> P = up.stress.template topLeftCorner<dim, dim>() * C;
                   Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
                 }
             }
@@ -471,51 +506,99 @@ namespace sph
     const double      hg    = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
     const bool        av    = alpha > 0 || beta > 0;
     const double      pa    = pressure_;
-    const std::vector<double> &V = tl ? p_.volume0 : p_.volume;
+    // the arrays the pair force reads, as plain pointers held by value in the lambdas below: a
+    // captured reference to a std::vector costs two or three dependent loads per use, and
+    // there are too few registers to keep them all
+    const double       *V      = (tl ? p_.volume0 : p_.volume).data();
+    const Tensor<dim>  *Q      = Q_.data();
+    const Tensor<dim>  *F      = p_.F.data();
+    const Vector<dim>  *x      = p_.x.data();
+    const Vector<dim>  *v      = p_.v.data();
+    const Vector<dim>  *x0     = p_.x0.data();
+    const double       *h      = p_.h.data();
+    const double       *rho    = p_.density.data();
+    const double       *m      = p_.mass.data();
+    const Vector<dim>  *grad_w = grad_w_.data();
+    const double       *hgf    = hg_factor_.data();
+    const std::int32_t *second = pairs_.second.data(), *pair_begin = pair_begin_.data();
+    Vector<dim>        *f_int  = p_.f_int.data();
+    // what the pair force reads of particle i, copied into locals once per particle: the loop
+    // writes f_int[j] through double pointers, after which the compiler must reload every double
+    // it read from the particle arrays
+    struct Side
+    {
+      Tensor<dim> Q, F;
+      Vector<dim> x, v, x0;
+      double      h, density, mass, V;
+    };
+    const auto side = [=](const int i) __attribute__((always_inline)) {
+      return Side{Q[i], F[i], x[i], v[i], x0[i], h[i], rho[i], m[i], V[i]};
+    };
     // force on i of pair p = (i, j) (-force on j), with its viscous and hourglass powers
-    // (always inlined: called at two places, and a call per pair costs ~70 instructions)
-    const auto pair_force = [&](const std::int32_t p, const int i, const int j, double &power,
+    // (always inlined: called at two places, and a call per pair costs ~70 instructions).
+    // Written in scalars: Eigen's packets of two on 3-vectors cost more in shuffles than they save
+    const auto pair_force = [=](const std::int32_t p, const Side &si, const int j,
+                                double (&f)[dim], double &power,
                                 double &hg_power) __attribute__((always_inline)) {
-      const Vector<dim> &gw = grad_w_[p];
+      const Vector<dim> &gw = grad_w[p];
+      const Vector<dim> &xj = x[j], &vj = v[j];
+      double             xij[dim], vij[dim], r2 = 0, vr = 0;
+      for (int d = 0; d < dim; ++d)
+        {
+          xij[d] = si.x[d] - xj[d];
+          vij[d] = si.v[d] - vj[d];
+          r2 += xij[d] * xij[d];
+          vr += vij[d] * xij[d];
+        }
       // stress: f_i = V_i V_j (P_i L_i + P_j L_j) grad W_ij, f_j = -f_i
       // (Q = P L without the volume: one sum of tensors and one product by V_i V_j per pair)
-      Vector<dim>       f   = (V[i] * V[j]) * ((Q_[i] + Q_[j]) * gw);
-      const Vector<dim> xij = p_.x[i] - p_.x[j];
-      const Vector<dim> vij = p_.v[i] - p_.v[j];
-      const double      r2  = xij.squaredNorm();
-      power = hg_power = 0;
-      if (av)
+      const double       vv = si.V * V[j];
+      const Tensor<dim> &Qj = Q[j];
+      for (int r = 0; r < dim; ++r)
         {
-          const double vr = vij.dot(xij);
-          if (vr < 0 && r2 > 0)
-            {
-              const double hb  = 0.5 * (p_.h[i] + p_.h[j]);
-              const double mu  = hb * vr / (r2 + 0.01 * hb * hb);
-              const double rho = 0.5 * (p_.density[i] + p_.density[j]);
-              const double Pi  = (-alpha * c * mu + beta * mu * mu) / rho;
-              // grad W along the current pair direction, magnitude of the cached gradient:
-              // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
-              const Vector<dim> fv =
-                (p_.mass[i] * p_.mass[j] * Pi * std::sqrt(gw.squaredNorm() / r2)) * xij;
-              f += fv;
-              power = fv.dot(vij); // <= 0: rate of work of the viscous pair on the particles
-            }
+          double s = 0;
+          for (int k = 0; k < dim; ++k)
+            s += (si.Q(r, k) + Qj(r, k)) * gw[k];
+          f[r] = vv * s;
+        }
+      // the viscous and the hourglass forces both act along x_ij: f += (s_av + s_hg) x_ij, and
+      // their powers are s x_ij . v_ij = s vr
+      double s_av = 0, s_hg = 0;
+      if (av && vr < 0 && r2 > 0)
+        {
+          const double hb     = 0.5 * (si.h + h[j]);
+          const double mu     = hb * vr / (r2 + 0.01 * hb * hb);
+          const double rho_ij = 0.5 * (si.density + rho[j]);
+          const double Pi     = (-alpha * c * mu + beta * mu * mu) / rho_ij;
+          // grad W along the current pair direction, magnitude of the cached gradient:
+          // |gw| / r = sqrt(|gw|^2 / r^2), one square root instead of two
+          s_av = si.mass * m[j] * Pi * std::sqrt(gw.squaredNorm() / r2);
         }
       if (hg > 0 && r2 > 0)
         {
-          // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j
+          // Ganzenmueller (2015): mismatch of the pair separation predicted by F_i and F_j,
+          // err = (F_i + F_j) X / 2 - x with X = X_j - X_i, x = x_j - x_i = -x_ij;
           // delta = err . x / r is the separation error along the pair; the force magnitude
           // g = hg V_i V_j W(|X|) delta / |X|^2 (the constant factor cached by build_pairs)
-          // acts along x / r: g / r = factor * (err . x) / r^2, no square root needed
-          const Vector<dim> X        = p_.x0[j] - p_.x0[i];
-          const Vector<dim> x        = -xij;
-          const Vector<dim> err      = 0.5 * ((p_.F[i] + p_.F[j]) * X) - x;
-          const double      g_over_r = hg_factor_[p] * err.dot(x) / r2;
-          const Vector<dim> fh       = -g_over_r * x; // on i; +g x/r on j
-          f += fh;
-          hg_power = fh.dot(vij);
+          // acts along x / r: on i -(g / r) x = -factor (err . x) / r^2 x = s_hg x_ij with
+          // s_hg = -factor (e . x_ij) / r^2, e = -err = (F_i + F_j) X / 2 + x_ij
+          const Tensor<dim> &Fj  = F[j];
+          const Vector<dim> &x0j = x0[j];
+          double             e_dot = 0;
+          for (int r = 0; r < dim; ++r)
+            {
+              double y = 0;
+              for (int k = 0; k < dim; ++k)
+                y += (si.F(r, k) + Fj(r, k)) * (x0j[k] - si.x0[k]);
+              e_dot += (0.5 * y + xij[r]) * xij[r];
+            }
+          s_hg = -hgf[p] * e_dot / r2;
         }
-      return f;
+      const double s = s_av + s_hg;
+      for (int d = 0; d < dim; ++d)
+        f[d] += s * xij[d];
+      power    = s_av * vr; // <= 0: rate of work of the viscous pair on the particles
+      hg_power = s_hg * vr;
     };
     // dissipation powers summed per range in pair order, ranges added in order: deterministic
     // for a given thread count
@@ -529,9 +612,8 @@ namespace sph
           double *share = cross_share_[t].data();
           for (const std::int32_t p : cross_[t])
             {
-              double            power, hg_power;
-              const Vector<dim> f =
-                pair_force(p, pairs_.first[p], pairs_.second[p], power, hg_power);
+              double power, hg_power, f[dim];
+              pair_force(p, side(pairs_.first[p]), pairs_.second[p], f, power, hg_power);
               for (int d = 0; d < dim; ++d)
                 *share++ = f[d];
               *share++ = power;
@@ -556,16 +638,21 @@ namespace sph
           const double *share     = cross_share_[t].data();
           for (std::int32_t i = b; i < e; ++i)
             {
-              Vector<dim> fi = p_.f_int[i]; // its terms as second particle so far
-              for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+              Vector<dim> fi = f_int[i]; // its terms as second particle so far
+              const Side  si = side(i);
+              for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p)
                 {
-                  const std::int32_t j = pairs_.second[p];
+                  const std::int32_t j = second[p];
                   if (j < e)
                     {
-                      double            power, hg_power;
-                      const Vector<dim> f = pair_force(p, i, j, power, hg_power);
-                      fi += f;
-                      p_.f_int[j] -= f;
+                      double power, hg_power, f[dim];
+                      pair_force(p, si, j, f, power, hg_power);
+                      Vector<dim> &fj = f_int[j];
+                      for (int d = 0; d < dim; ++d)
+                        {
+                          fi[d] += f[d];
+                          fj[d] -= f[d];
+                        }
                       sum_power += power;
                       sum_hg_power += hg_power;
                     }
@@ -578,7 +665,7 @@ namespace sph
                       share += share_size;
                     }
                 }
-              p_.f_int[i] = fi;
+              f_int[i] = fi;
               if (pa != 0.0)
                 {
                   const Vector<dim> a =

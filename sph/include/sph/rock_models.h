@@ -230,21 +230,25 @@ namespace sph::rock
   /// at strength factor `factor` (the particle's scatter factor old_state.strength times the
   /// softening factor) and says whether it was plastic. The softening is
   /// implicit: the strength is that of the updated plastic strain, by fixed-point iteration.
-  template <typename Surface>
+  /// `surely_elastic(trial, factor)` is a cheaper sufficient test for an admissible trial stress
+  /// (no principal stresses needed); when it holds the step is elastic, as `surface` would find.
+  template <typename Surface, typename SurelyElastic>
   inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
                                      const MaterialState &old_state, const RockParameters &prm,
-                                     const Surface &surface)
+                                     const Surface &surface, const SurelyElastic &surely_elastic)
   {
     const Tensor3 trial = elastic_trial(stress_old, de, prm);
     Principal     s_trial;
     Tensor3       Q;
     {
-      // cheap admissibility check first
+      const double factor = old_state.strength * strength_factor(old_state.damage, prm);
+      if (surely_elastic(trial, factor))
+        return {trial, old_state};
+      // cheap admissibility check next
       Principal s = s_trial;
       Eigen::SelfAdjointEigenSolver<Tensor3> eig;
       eig.computeDirect(trial, Eigen::EigenvaluesOnly);
       s = Principal(eig.eigenvalues()[2], eig.eigenvalues()[1], eig.eigenvalues()[0]);
-      const double factor = old_state.strength * strength_factor(old_state.damage, prm);
       Principal    r      = s;
       const double scale  = 1e-9 * (s.cwiseAbs().maxCoeff() + prm.cohesion + prm.hb_sigma_ci);
       if (!surface(r, factor) || (r - s).cwiseAbs().maxCoeff() < scale)
@@ -298,7 +302,33 @@ namespace sph::rock
         }
       return pl;
     };
-    return plastic_update(stress_old, strain_increment, old_state, prm, surface);
+    // Bounds from the invariants alone: with the mean stress m, q = sqrt(J2) and the deviatoric
+    // principal stresses d0 >= d1 >= d2, the Lode angle within +-30 deg gives d0 - d2 <= 2 q,
+    // |d1| <= q / sqrt(3) and d0 <= 2 q / sqrt(3), so
+    //   f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
+    //     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
+    // Both below the surfaces by a margin far above round-off: the trial is admissible.
+    const auto surely_elastic = [&prm](const Tensor3 &t, const double factor) {
+      const double m  = t.trace() / 3.0;
+      double       dd = 0; // dev : dev = 2 J2
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          {
+            const double d = t(r, c) - (r == c ? m : 0.0);
+            dd += d * d;
+          }
+      const double q      = std::sqrt(0.5 * dd);
+      const double c      = prm.cohesion * factor;
+      const double margin = 1e-9 * (std::abs(m) + q + c);
+      const double f_max  = 2.0 * m * prm.sin_phi +
+                           q * (2.0 + std::abs(prm.sin_phi) / std::sqrt(3.0)) -
+                           2.0 * c * prm.cos_phi;
+      if (!(f_max < -margin))
+        return false;
+      return prm.tensile_strength <= 0 ||
+             m + 2.0 / std::sqrt(3.0) * q < prm.tensile_strength * factor - margin;
+    };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
   }
 
   /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), returned by
@@ -342,7 +372,9 @@ namespace sph::rock
       pl = return_rankine(s, st, prm) || pl;
       return pl;
     };
-    return plastic_update(stress_old, strain_increment, old_state, prm, surface);
+    // no cheap test: the principal stresses decide
+    const auto surely_elastic = [](const Tensor3 &, double) { return false; };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
   }
 
   /// Run-time model choice: dispatched once per particle loop with std::visit.
