@@ -60,7 +60,10 @@ namespace coupling
     /// concave masters (platens, the BTS jaw), the most penetrated face. A convex master also
     /// lets a particle that projects just past an edge shared by two faces (within a particle
     /// diameter of it) take that face's plane: the largest of the face-plane distances near a
-    /// convex apex is continuous where the projections onto the faces leave a gap.
+    /// convex apex is continuous where the projections onto the faces leave a gap. A flat or
+    /// concave master takes a face reached across an interior edge (clamped to it, within r of
+    /// it along the face) only when no face contains the particle's projection: over a ridge of
+    /// a loaded, warped platen face the projections leave the same gap.
     bool convex_master = false;
   };
 
