@@ -1,6 +1,8 @@
 #include <sph/body.h>
 #include <sph/kernels.h>
 
+#include "pair_kernel.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -172,6 +174,8 @@ namespace sph
     Q_.assign(n, Tensor<dim>::Zero());
     volume_next_.assign(n, 0.0);
     area0_.assign(n, Vector<dim>::Zero());
+    simd_ = dim == 3 && prm_.vectorised && pair_kernel::avx2_available();
+    record_.assign(simd_ ? n * pair_kernel::record_size : 0, 0.0);
 
     build_pairs();
     compute_correction();
@@ -250,7 +254,8 @@ namespace sph
           if (pairs_.second[p] >= e)
             cross_[t].push_back(p);
         // room for the larger share: a dim x dim tensor (F sums) or a force and two powers
-        cross_share_[t].resize(cross_[t].size() * std::max(dim * dim, dim + 2));
+        // (and for a last group of four pairs written whole by the vectorised pair force)
+        cross_share_[t].resize((cross_[t].size() + 3) * std::max(dim * dim, dim + 2));
       }
   }
 
@@ -604,22 +609,49 @@ namespace sph
     // for a given thread count
     std::vector<double> partial(2 * n_threads_, 0.0);
     constexpr int       share_size = dim + 2; // force, viscous power, hourglass power
+    static_assert(share_size == pair_kernel::out_size || dim != 3);
+    // the vectorised pair force (3-D, AVX2): the same terms, four pairs at a time
+    const bool        simd = simd_;
+    pair_kernel::Args args;
+    args.record    = record_.data();
+    args.grad_w    = grad_w_.empty() ? nullptr : grad_w_[0].data();
+    args.hg_factor = hg > 0 ? hgf : nullptr;
+    args.alpha     = alpha;
+    args.beta      = beta;
+    args.c         = c;
+    args.av        = av;
+    std::int32_t max_pairs = 0;
+    if (simd)
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        max_pairs = std::max(max_pairs, pair_begin[i + 1] - pair_begin[i]);
 #pragma omp parallel num_threads(n_threads_)
     {
       const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
+      if (simd)
+        {
+          for (int t = t0; t < n_threads_; t += nt)
+            pack_records(range_begin_[t], range_begin_[t + 1]);
+#pragma omp barrier
+        }
       for (int t = t0; t < n_threads_; t += nt)
         {
           double *share = cross_share_[t].data();
-          for (const std::int32_t p : cross_[t])
-            {
-              double power, hg_power, f[dim];
-              pair_force(p, side(pairs_.first[p]), pairs_.second[p], f, power, hg_power);
-              for (int d = 0; d < dim; ++d)
-                *share++ = f[d];
-              *share++ = power;
-              *share++ = hg_power;
-            }
+          if (simd)
+            pair_kernel::list_forces(args, cross_[t].data(), static_cast<int>(cross_[t].size()),
+                                     pairs_.first.data(), second, share);
+          else
+            for (const std::int32_t p : cross_[t])
+              {
+                double power, hg_power, f[dim];
+                pair_force(p, side(pairs_.first[p]), pairs_.second[p], f, power, hg_power);
+                for (int d = 0; d < dim; ++d)
+                  *share++ = f[d];
+                *share++ = power;
+                *share++ = hg_power;
+              }
         }
+      // the pair forces of one particle (vectorised path): 4 doubles per pair
+      std::vector<double> own(simd ? 4 * (max_pairs + 3) : 0);
 #pragma omp barrier
       for (int t = t0; t < n_threads_; t += nt)
         {
@@ -639,30 +671,56 @@ namespace sph
           for (std::int32_t i = b; i < e; ++i)
             {
               Vector<dim> fi = f_int[i]; // its terms as second particle so far
-              const Side  si = side(i);
-              for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p)
+              if (simd)
                 {
-                  const std::int32_t j = second[p];
-                  if (j < e)
+                  // i's pairs four at a time: their sum on i in lanes (a fixed order), the
+                  // second particles' shares subtracted pair by pair (each j in ascending i)
+                  double sum[pair_kernel::out_size];
+                  pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1], second,
+                                               own.data(), sum);
+                  const double *o = own.data();
+                  for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p, o += 4)
                     {
-                      double power, hg_power, f[dim];
-                      pair_force(p, si, j, f, power, hg_power);
-                      Vector<dim> &fj = f_int[j];
-                      for (int d = 0; d < dim; ++d)
+                      const std::int32_t j = second[p];
+                      if (j < e) // else: subtracted by j's owner (cross_)
                         {
-                          fi[d] += f[d];
-                          fj[d] -= f[d];
+                          Vector<dim> &fj = f_int[j];
+                          for (int d = 0; d < dim; ++d)
+                            fj[d] -= o[d];
                         }
-                      sum_power += power;
-                      sum_hg_power += hg_power;
                     }
-                  else // computed before the barrier (cross_), in this order
+                  for (int d = 0; d < dim; ++d)
+                    fi[d] += sum[d];
+                  sum_power += sum[dim];
+                  sum_hg_power += sum[dim + 1];
+                }
+              else
+                {
+                  const Side si = side(i);
+                  for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p)
                     {
-                      for (int d = 0; d < dim; ++d)
-                        fi[d] += share[d];
-                      sum_power += share[dim];
-                      sum_hg_power += share[dim + 1];
-                      share += share_size;
+                      const std::int32_t j = second[p];
+                      if (j < e)
+                        {
+                          double power, hg_power, f[dim];
+                          pair_force(p, si, j, f, power, hg_power);
+                          Vector<dim> &fj = f_int[j];
+                          for (int d = 0; d < dim; ++d)
+                            {
+                              fi[d] += f[d];
+                              fj[d] -= f[d];
+                            }
+                          sum_power += power;
+                          sum_hg_power += hg_power;
+                        }
+                      else // computed before the barrier (cross_), in this order
+                        {
+                          for (int d = 0; d < dim; ++d)
+                            fi[d] += share[d];
+                          sum_power += share[dim];
+                          sum_hg_power += share[dim + 1];
+                          share += share_size;
+                        }
                     }
                 }
               f_int[i] = fi;
@@ -690,6 +748,33 @@ namespace sph
       }
     if (!face_columns_.empty())
       loaded_face_forces();
+  }
+
+  template <int dim>
+  void Body<dim>::pack_records(const std::int32_t begin, const std::int32_t end)
+  {
+    if constexpr (dim == 3)
+      {
+        namespace f          = pair_kernel::field;
+        const bool    tl     = total_lagrangian();
+        const double *volume = (tl ? p_.volume0 : p_.volume).data();
+        for (std::int32_t i = begin; i < end; ++i)
+          {
+            double *r = &record_[pair_kernel::record_size * static_cast<std::size_t>(i)];
+            std::copy(Q_[i].data(), Q_[i].data() + 9, r + f::q);
+            std::copy(p_.F[i].data(), p_.F[i].data() + 9, r + f::f);
+            for (int d = 0; d < 3; ++d)
+              {
+                r[f::x + d]  = p_.x[i][d];
+                r[f::v + d]  = p_.v[i][d];
+                r[f::x0 + d] = p_.x0[i][d];
+              }
+            r[f::h]       = p_.h[i];
+            r[f::density] = p_.density[i];
+            r[f::mass]    = p_.mass[i];
+            r[f::volume]  = volume[i];
+          }
+      }
   }
 
   template <int dim>

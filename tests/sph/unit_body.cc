@@ -176,6 +176,61 @@ namespace
                              result[0].size() * sizeof(Vector<3>)));
   }
 
+  TEST(SphBody, VectorisedPairForceIsTheScalarOneToRoundOff)
+  {
+    // one state (random velocities: viscosity on approaching pairs; one step of flow: stress,
+    // F != I, hourglass terms) through the vectorised and the scalar pair force. The same terms
+    // in another order and with fused multiply-adds: each force agrees to round-off of the sum
+    // of its ~60 pair terms, 1e-12 of the largest force (the terms themselves are at most a few
+    // times the largest force, and double round-off is 1.1e-16 per operation)
+    for (const Formulation form :
+         {Formulation::total_lagrangian_corrected, Formulation::updated_lagrangian_corrected})
+      {
+        std::vector<std::vector<Vector<3>>> force;
+        std::vector<Energies>               energy;
+        for (const bool vectorised : {true, false})
+          {
+            const Lattice<3> lat = make_cylinder<3>(0.01, 0.02, 0.001);
+            Parameters       p   = numerics(form, 0.001);
+            p.vectorised         = vectorised;
+            p.n_threads          = 2;
+            MaterialParameters m = elastic_rock();
+            m.model              = RockModel::mohr_coulomb;
+            m.cohesion           = 1e6;
+            m.friction_angle     = 0.5;
+            Body<3> body(p, m, lat.positions, lat.volumes);
+            if (vectorised && !body.vectorised())
+              GTEST_SKIP() << "this CPU has no AVX2: only the scalar pair force runs here";
+            ASSERT_EQ(vectorised, body.vectorised());
+            std::mt19937                           rng(7);
+            std::uniform_real_distribution<double> u(-1.0, 1.0);
+            for (unsigned i = 0; i < body.n_particles(); ++i)
+              body.set_velocity(i, Vector<3>(u(rng), u(rng), u(rng)));
+            for (int s = 0; s < 3; ++s)
+              {
+                body.compute_forces();
+                body.integrate(body.stable_time_step());
+              }
+            body.compute_forces();
+            force.push_back(body.internal_forces());
+            energy.push_back(body.energies());
+          }
+        double scale = 0, worst = 0;
+        for (std::size_t i = 0; i < force[0].size(); ++i)
+          {
+            scale = std::max(scale, force[1][i].norm());
+            worst = std::max(worst, (force[0][i] - force[1][i]).norm());
+          }
+        ASSERT_GT(scale, 0.0) << "the state must be loaded, or the test proves nothing";
+        EXPECT_LT(worst, 1e-12 * scale) << "FORM " << static_cast<int>(form);
+        // viscous and hourglass work of the three steps: sums of ~10^5 pair powers each
+        ASSERT_GT(energy[1].viscous, 0.0) << "the viscosity must act, or the test proves nothing";
+        EXPECT_NEAR(energy[0].viscous, energy[1].viscous, 1e-10 * std::abs(energy[1].viscous));
+        EXPECT_NEAR(energy[0].hourglass, energy[1].hourglass,
+                    1e-10 * std::abs(energy[1].viscous) + 1e-10 * std::abs(energy[1].hourglass));
+      }
+  }
+
   TEST(SphPressure, UniformPressureOnBlock)
   {
     // the area vectors of a closed body sum to zero by pair antisymmetry (round-off), and those

@@ -100,6 +100,8 @@ namespace sph
     std::vector<Vector<dim>> &external_forces() { return p_.f_ext; }
     /// Internal force of the last `compute_forces` [N] (stress + viscosity + hourglass).
     const std::vector<Vector<dim>> &internal_forces() const { return p_.f_int; }
+    /// True when the pair forces run four at a time (3-D, AVX2, Parameters::vectorised).
+    bool vectorised() const { return simd_; }
     /// Surface-pressure force of the last `compute_forces` [N].
     const std::vector<Vector<dim>> &pressure_forces() const { return p_.f_pressure; }
 
@@ -193,6 +195,8 @@ namespace sph
     void update_stress_total_lagrangian();   // one pass: sums for F over the pairs + stress
     void update_stress_updated_lagrangian();
     void pair_forces();            // one pass: f_int and f_pressure (loaded faces after it)
+    // record_ of particles [begin, end) from the arrays (3-D, vectorised pair force)
+    void pack_records(std::int32_t begin, std::int32_t end);
     void loaded_face_forces();     // see add_loaded_face (in body_loaded_face.cc)
     // calls f(name, field) for each array and scalar save_state/load_state carry as it is
     // (body_state.cc); Self is Body or const Body
@@ -228,6 +232,10 @@ namespace sph
     std::vector<Vector<dim>>  reaction_;
     std::vector<double>       stress_work_; // per particle: integrated stress power [J]
     std::vector<double>       volume_next_; // per particle: scratch for the UL volume update
+    // 3-D on a CPU with AVX2 (and Parameters::vectorised): pair_forces runs the pair force of
+    // src/pair_kernel.h, which reads each particle's fields from one record of 32 doubles
+    bool                simd_ = false;
+    std::vector<double> record_; // per particle: pair_kernel::record_size doubles (simd_ only)
     /// One column of a loaded face: its outer particle, then the particles below it.
     struct FaceColumn
     {

@@ -37,6 +37,9 @@ namespace sph
     double      av_beta     = 1.0;    ///< Monaghan artificial viscosity, quadratic term [-]
     double      hourglass   = 0.1;    ///< Ganzenmueller hourglass coefficient (FORM 7, 8) [-]
     int         n_threads   = 0;      ///< OpenMP threads; 0 = omp_get_max_threads()
+    /// 3-D pair forces four at a time with AVX2 where the CPU has it (false: the portable scalar
+    /// loop; the two differ by round-off only)
+    bool        vectorised  = true;
   };
 
   /// Rock material. Strengths are positive numbers; stress in code is tension-positive.

@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// The 3-D pair force of Body::pair_forces on four pairs at once (AVX2 + FMA), for CPUs that have
+/// it. Private to sph/src. Same physics as the scalar pair force in body.cc (stress, Monaghan
+/// viscosity, Ganzenmueller hourglass control); the two differ by round-off only. Every pair goes
+/// through one sequence of IEEE operations (the file is built without contraction), whatever its
+/// lane or its loop: a pair's force has the same bits in the in-range and the cross-range loops,
+/// so the results stay independent of the thread count.
+
+#include <cstdint>
+
+namespace sph::pair_kernel
+{
+  /// Offsets of a particle's fields in its record of `record_size` doubles, packed once per force
+  /// pass: the four pairs' second particles are then read as eight 4 x 4 blocks and transposed.
+  namespace field
+  {
+    enum : int
+    {
+    q       = 0,  ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
+    f       = 9,  ///< deformation gradient F, column-major [-]
+    x       = 18, ///< position [m]
+    v       = 21, ///< velocity [m/s]
+    x0      = 24, ///< reference position [m]
+    h       = 27, ///< smoothing length [m]
+    density = 28, ///< [kg/m^3]
+    mass    = 29, ///< [kg]
+    volume  = 30, ///< V0 (TL) or V (UL) [m^3]
+    record_size = 32
+    };
+  } // namespace field
+  using field::record_size;
+
+  /// What the pair force reads besides the records.
+  struct Args
+  {
+    const double *record    = nullptr; ///< record_size doubles per particle
+    const double *grad_w    = nullptr; ///< 3 per pair: grad_i W_ij
+    const double *hg_factor = nullptr; ///< 1 per pair; nullptr: no hourglass control
+    double        alpha = 0, beta = 0; ///< Monaghan viscosity coefficients [-]
+    double        c     = 0;           ///< sound speed of the viscosity [m/s]
+    bool          av    = false;       ///< viscosity on
+  };
+
+  /// Output per pair: force on the first particle (3) [N], viscous power, hourglass power [W].
+  constexpr int out_size = 5;
+
+  /// True where the CPU runs AVX2 and FMA.
+  bool avx2_available();
+
+  /// Pairs list[0..n) (indices into first, second and the per-pair arrays) to out[out_size * k];
+  /// out must hold out_size * (n + 3) doubles (the last group of four is written whole).
+  void list_forces(const Args &a, const std::int32_t *list, int n, const std::int32_t *first,
+                   const std::int32_t *second, double *out);
+
+  /// The pairs [pb, pe) of particle i (consecutive, second particle second[p]): the force on i
+  /// of pair p to rows[4 (p - pb) .. + 2] (rows[4 (p - pb) + 3]: its viscous power; rows must
+  /// hold 4 (pe - pb + 3) doubles), and the sums over the pairs of the force on i (sum[0..2]),
+  /// the viscous and the hourglass power (sum[3], sum[4]), each in a fixed order (4 lanes).
+  void particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
+                       const std::int32_t *second, double *rows, double *sum);
+} // namespace sph::pair_kernel

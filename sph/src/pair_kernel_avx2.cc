@@ -1,0 +1,229 @@
+#include "pair_kernel.h"
+
+#include <immintrin.h>
+
+#include <algorithm>
+
+// Built with -ffp-contract=off (sph/CMakeLists.txt): the compiler may not fuse or reorder any of
+// the operations below, so each inlined copy of pair() computes the same bits.
+#define SPH_AVX2 __attribute__((target("avx2,fma"), always_inline)) inline
+
+namespace sph::pair_kernel
+{
+  namespace
+  {
+    using v4 = __m256d;
+
+    /// Columns of the 4 x 4 block (r0..r3 as rows): out[k] = (r0[k], r1[k], r2[k], r3[k]).
+    SPH_AVX2 void transpose(const v4 r0, const v4 r1, const v4 r2, const v4 r3, v4 *out)
+    {
+      const v4 u0 = _mm256_unpacklo_pd(r0, r1); // r0[0] r1[0] r0[2] r1[2]
+      const v4 u1 = _mm256_unpackhi_pd(r0, r1); // r0[1] r1[1] r0[3] r1[3]
+      const v4 u2 = _mm256_unpacklo_pd(r2, r3);
+      const v4 u3 = _mm256_unpackhi_pd(r2, r3);
+      out[0]      = _mm256_permute2f128_pd(u0, u2, 0x20);
+      out[1]      = _mm256_permute2f128_pd(u1, u3, 0x20);
+      out[2]      = _mm256_permute2f128_pd(u0, u2, 0x31);
+      out[3]      = _mm256_permute2f128_pd(u1, u3, 0x31);
+    }
+
+    /// The records of four particles as lanes: lane[k] = field k of particles p[0..3].
+    SPH_AVX2 void gather(const double *record, const std::int32_t *p, v4 *lane)
+    {
+      const double *r0 = record + record_size * static_cast<std::int64_t>(p[0]);
+      const double *r1 = record + record_size * static_cast<std::int64_t>(p[1]);
+      const double *r2 = record + record_size * static_cast<std::int64_t>(p[2]);
+      const double *r3 = record + record_size * static_cast<std::int64_t>(p[3]);
+      for (int b = 0; b < record_size; b += 4)
+        transpose(_mm256_loadu_pd(r0 + b), _mm256_loadu_pd(r1 + b), _mm256_loadu_pd(r2 + b),
+                  _mm256_loadu_pd(r3 + b), lane + b);
+    }
+
+    /// One particle's record in every lane.
+    SPH_AVX2 void broadcast(const double *record, const std::int32_t i, v4 *lane)
+    {
+      const double *r = record + record_size * static_cast<std::int64_t>(i);
+      for (int k = 0; k < record_size; ++k)
+        lane[k] = _mm256_broadcast_sd(r + k);
+    }
+
+    /// What pair() gives for four pairs, in lanes.
+    struct Lanes4
+    {
+      v4 force[3]; ///< on the first particle [N]
+      v4 power;    ///< viscous power [W] (<= 0)
+      v4 hg_power; ///< hourglass power [W]
+    };
+
+    /// Four pairs (i lanes a, j lanes b, pair indices p).
+    SPH_AVX2 Lanes4 pair(const Args &arg, const v4 *a, const v4 *b, const std::int32_t *p)
+    {
+      const double *gp[4] = {arg.grad_w + 3 * static_cast<std::int64_t>(p[0]),
+                             arg.grad_w + 3 * static_cast<std::int64_t>(p[1]),
+                             arg.grad_w + 3 * static_cast<std::int64_t>(p[2]),
+                             arg.grad_w + 3 * static_cast<std::int64_t>(p[3])};
+      v4 g[3];
+      for (int d = 0; d < 3; ++d)
+        g[d] = _mm256_set_pd(gp[3][d], gp[2][d], gp[1][d], gp[0][d]);
+      const v4 zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5);
+
+      v4 xij[3], r2 = zero, vr = zero;
+      for (int d = 0; d < 3; ++d)
+        {
+          xij[d]       = _mm256_sub_pd(a[field::x + d], b[field::x + d]);
+          const v4 vij = _mm256_sub_pd(a[field::v + d], b[field::v + d]);
+          r2           = _mm256_fmadd_pd(xij[d], xij[d], r2);
+          vr           = _mm256_fmadd_pd(vij, xij[d], vr);
+        }
+      Lanes4 out;
+      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij (Q column-major: Q(r, k) at 3 k + r)
+      const v4 vv = _mm256_mul_pd(a[field::volume], b[field::volume]);
+      for (int r = 0; r < 3; ++r)
+        {
+          v4 s = zero;
+          for (int k = 0; k < 3; ++k)
+            s = _mm256_fmadd_pd(_mm256_add_pd(a[field::q + 3 * k + r], b[field::q + 3 * k + r]),
+                                g[k], s);
+          out.force[r] = _mm256_mul_pd(vv, s);
+        }
+      // one division for 1/r^2 and the viscosity's two quotients: with D = r^2 + 0.01 hb^2 and
+      // z = 1 / (r^2 D rho_ij), 1/r^2 = D rho_ij z, mu = hb vr / D = hb vr r^2 rho_ij z and
+      // Pi = mu (beta mu - alpha c) / rho_ij = mu (beta mu - alpha c) r^2 D z
+      // (r = 0 lanes are masked below)
+      const v4 r2_pos = _mm256_cmp_pd(r2, zero, _CMP_GT_OQ);
+      const v4 hb     = _mm256_mul_pd(half, _mm256_add_pd(a[field::h], b[field::h]));
+      const v4 rho_ij = _mm256_mul_pd(half, _mm256_add_pd(a[field::density], b[field::density]));
+      const v4 D      = _mm256_fmadd_pd(_mm256_set1_pd(0.01), _mm256_mul_pd(hb, hb), r2);
+      const v4 r2D    = _mm256_mul_pd(r2, D);
+      const v4 z      = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_mul_pd(r2D, rho_ij));
+      const v4 inv_r2 = _mm256_mul_pd(_mm256_mul_pd(D, rho_ij), z);
+      v4       s_av   = zero;
+      if (arg.av)
+        {
+          const v4 mu =
+            _mm256_mul_pd(_mm256_mul_pd(hb, vr), _mm256_mul_pd(_mm256_mul_pd(r2, rho_ij), z));
+          const v4 pi = _mm256_mul_pd(_mm256_mul_pd(mu, _mm256_fmadd_pd(_mm256_set1_pd(arg.beta), mu,
+                                                                        _mm256_set1_pd(-arg.alpha * arg.c))),
+                                      _mm256_mul_pd(r2D, z));
+          v4 gw2 = zero;
+          for (int d = 0; d < 3; ++d)
+            gw2 = _mm256_fmadd_pd(g[d], g[d], gw2);
+          s_av = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(a[field::mass], b[field::mass]), pi),
+                               _mm256_sqrt_pd(_mm256_mul_pd(gw2, inv_r2)));
+          // only approaching pairs (v_ij . x_ij < 0) at distinct positions
+          s_av = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(vr, zero, _CMP_LT_OQ), r2_pos), s_av);
+        }
+      v4 s_hg = zero;
+      if (arg.hg_factor)
+        {
+          // e = (F_i + F_j) X / 2 + x_ij with X = X_j - X_i; s_hg = -factor (e . x_ij) / r^2
+          v4 dx0[3];
+          for (int k = 0; k < 3; ++k)
+            dx0[k] = _mm256_sub_pd(b[field::x0 + k], a[field::x0 + k]);
+          v4 e_dot = zero;
+          for (int r = 0; r < 3; ++r)
+            {
+              v4 y = zero;
+              for (int k = 0; k < 3; ++k)
+                y = _mm256_fmadd_pd(_mm256_add_pd(a[field::f + 3 * k + r], b[field::f + 3 * k + r]),
+                                    dx0[k], y);
+              e_dot = _mm256_fmadd_pd(_mm256_fmadd_pd(half, y, xij[r]), xij[r], e_dot);
+            }
+          const v4 factor = _mm256_set_pd(arg.hg_factor[p[3]], arg.hg_factor[p[2]],
+                                          arg.hg_factor[p[1]], arg.hg_factor[p[0]]);
+          s_hg = _mm256_and_pd(r2_pos, _mm256_mul_pd(_mm256_mul_pd(factor, e_dot),
+                                                     _mm256_sub_pd(zero, inv_r2)));
+        }
+      const v4 s = _mm256_add_pd(s_av, s_hg);
+      for (int d = 0; d < 3; ++d)
+        out.force[d] = _mm256_fmadd_pd(s, xij[d], out.force[d]);
+      out.power    = _mm256_mul_pd(s_av, vr);
+      out.hg_power = _mm256_mul_pd(s_hg, vr);
+      return out;
+    }
+
+    /// Sum of the four lanes, in one fixed order.
+    SPH_AVX2 double lane_sum(const v4 s)
+    {
+      alignas(32) double l[4];
+      _mm256_store_pd(l, s);
+      return (l[0] + l[1]) + (l[2] + l[3]);
+    }
+  } // namespace
+
+  bool avx2_available()
+  {
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }
+
+  __attribute__((target("avx2,fma"))) void list_forces(const Args &a, const std::int32_t *list,
+                                                       const int n, const std::int32_t *first,
+                                                       const std::int32_t *second, double *out)
+  {
+    v4 la[record_size], lb[record_size];
+    for (int k = 0; k < n; k += 4)
+      {
+        // a short last group repeats its last pair; those lanes' outputs are not read
+        std::int32_t p[4], i[4], j[4];
+        for (int l = 0; l < 4; ++l)
+          {
+            p[l] = list[std::min(k + l, n - 1)];
+            i[l] = first[p[l]];
+            j[l] = second[p[l]];
+          }
+        gather(a.record, i, la);
+        gather(a.record, j, lb);
+        const Lanes4 r = pair(a, la, lb, p);
+        // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its
+        // hourglass power
+        v4 rows[4];
+        transpose(r.force[0], r.force[1], r.force[2], r.power, rows);
+        alignas(32) double hp[4];
+        _mm256_store_pd(hp, r.hg_power);
+        double *o = out + out_size * k;
+        for (int m = 0; m < 4; ++m)
+          {
+            _mm256_storeu_pd(o + out_size * m, rows[m]);
+            o[out_size * m + 4] = hp[m];
+          }
+      }
+  }
+
+  __attribute__((target("avx2,fma"))) void particle_forces(const Args &a, const std::int32_t i,
+                                                           const std::int32_t pb,
+                                                           const std::int32_t pe,
+                                                           const std::int32_t *second, double *rows,
+                                                           double *sum)
+  {
+    v4 la[record_size], lb[record_size];
+    broadcast(a.record, i, la);
+    const v4 zero = _mm256_setzero_pd();
+    v4       acc[5] = {zero, zero, zero, zero, zero};
+    for (std::int32_t k = pb; k < pe; k += 4)
+      {
+        std::int32_t p[4], j[4];
+        for (int l = 0; l < 4; ++l)
+          {
+            p[l] = std::min(k + l, pe - 1);
+            j[l] = second[p[l]];
+          }
+        gather(a.record, j, lb);
+        const Lanes4 r = pair(a, la, lb, p);
+        // lanes past pe repeat the last pair: they add nothing to the sums
+        const int  n_valid = std::min(4, pe - k);
+        const v4   valid   = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
+          _mm256_set1_epi64x(n_valid), _mm256_set_epi64x(3, 2, 1, 0)));
+        for (int d = 0; d < 3; ++d)
+          acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(valid, r.force[d]));
+        acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(valid, r.power));
+        acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(valid, r.hg_power));
+        v4 out[4];
+        transpose(r.force[0], r.force[1], r.force[2], r.power, out);
+        double *o = rows + 4 * (k - pb);
+        for (int m = 0; m < 4; ++m)
+          _mm256_storeu_pd(o + 4 * m, out[m]);
+      }
+    for (int c = 0; c < 5; ++c)
+      sum[c] = lane_sum(acc[c]);
+  }
+} // namespace sph::pair_kernel
