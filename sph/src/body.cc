@@ -176,6 +176,7 @@ namespace sph
     area0_.assign(n, Vector<dim>::Zero());
     simd_ = dim == 3 && prm_.vectorised && pair_kernel::avx2_available();
     record_.assign(simd_ ? n * pair_kernel::record_size : 0, 0.0);
+    position_volume_.assign(simd_ ? 4 * n : 0, 0.0);
 
     build_pairs();
     compute_correction();
@@ -352,7 +353,8 @@ namespace sph
     // V0_j d (x) g to A_i and -V0_i (-d) (x) g to A_j (d = x_j - x_i, g = grad_w_ of the pair).
     // A_j is summed in p_.F[j] (set to zero first) until j's own pairs finish it; then j's stress
     // is updated in the same pass (see pair_begin_ in body.h for the order of the terms).
-    const bool                      cor = corrected();
+    const bool                      cor  = corrected();
+    const bool                      simd = simd_;
     const std::vector<double>      &V0  = p_.volume0;
     const std::vector<Vector<dim>> &x   = p_.x;
     constexpr int                   dd  = dim * dim;
@@ -377,6 +379,15 @@ namespace sph
                     }
                 }
             }
+          if (simd) // (x, V0) of the particles in range, read by all as second particles
+            for (int t = t0; t < n_threads_; t += nt)
+              for (std::int32_t i = range_begin_[t]; i < range_begin_[t + 1]; ++i)
+                {
+                  double *r = &position_volume_[4 * static_cast<std::size_t>(i)];
+                  for (int d = 0; d < dim; ++d)
+                    r[d] = x[i][d];
+                  r[3] = V0[i];
+                }
 #pragma omp barrier
           for (int t = t0; t < n_threads_; t += nt)
             {
@@ -401,11 +412,25 @@ namespace sph
                   for (int r = 0; r < dim; ++r)
                     for (int c = 0; c < dim; ++c)
                       a[r][c] = p_.F[i](r, c);
+                  if constexpr (dim == 3)
+                    if (simd)
+                      {
+                        // four pairs at a time (src/pair_kernel.h); i's own terms summed in
+                        // lanes (a fixed order), after its terms as second particle
+                        double own[dd];
+                        pair_kernel::particle_gradient(
+                          position_volume_.data(), grad_w_[0].data(), i, pair_begin_[i],
+                          pair_begin_[i + 1], pairs_.second.data(), e, p_.F[0].data(), own);
+                        for (int r = 0; r < dim; ++r)
+                          for (int c = 0; c < dim; ++c)
+                            a[r][c] += own[dim * c + r];
+                      }
                   // i's position and volume in locals: the stores to p_.F[j] below are through
                   // double pointers and would make the compiler reload them at every pair
                   const Vector<dim> xi  = x[i];
                   const double      V0i = V0[i];
-                  for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+                  for (std::int32_t p = simd ? pair_begin_[i + 1] : pair_begin_[i];
+                       p < pair_begin_[i + 1]; ++p)
                     {
                       const std::int32_t j  = pairs_.second[p];
                       const Vector<dim> &g  = grad_w_[p];

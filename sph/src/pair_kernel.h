@@ -59,4 +59,14 @@ namespace sph::pair_kernel
   /// the viscous and the hourglass power (sum[3], sum[4]), each in a fixed order (4 lanes).
   void particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
                        const std::int32_t *second, double *rows, double *sum);
+
+  /// The deformation-gradient sums of total Lagrangian SPH over the pairs [pb, pe) of particle i
+  /// (A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij, column-major), four pairs at a time.
+  /// position_volume holds (x, V0) per particle (4 doubles). Adds the share of each second
+  /// particle j < e, V0_i (x_j - x_i) (x) g, to a[9 j ..] in pair order (a product rounded, then
+  /// one addition per entry, as the cross-range shares are); returns i's own sum in own[0..8]
+  /// (a fixed order: lanes, then lane sums).
+  void particle_gradient(const double *position_volume, const double *grad_w, std::int32_t i,
+                         std::int32_t pb, std::int32_t pe, const std::int32_t *second,
+                         std::int32_t e, double *a, double *own);
 } // namespace sph::pair_kernel

@@ -226,4 +226,74 @@ namespace sph::pair_kernel
     for (int c = 0; c < 5; ++c)
       sum[c] = lane_sum(acc[c]);
   }
+
+  __attribute__((target("avx2,fma"))) void
+  particle_gradient(const double *position_volume, const double *grad_w, const std::int32_t i,
+                    const std::int32_t pb, const std::int32_t pe, const std::int32_t *second,
+                    const std::int32_t e, double *a, double *own)
+  {
+    const double *xi = position_volume + 4 * static_cast<std::int64_t>(i);
+    const v4      x_i[3] = {_mm256_broadcast_sd(xi), _mm256_broadcast_sd(xi + 1),
+                            _mm256_broadcast_sd(xi + 2)};
+    const v4      V0i    = _mm256_broadcast_sd(xi + 3);
+    const v4      zero   = _mm256_setzero_pd();
+    v4            acc[9];
+    for (int k = 0; k < 9; ++k)
+      acc[k] = zero;
+    for (std::int32_t k = pb; k < pe; k += 4)
+      {
+        std::int32_t p[4], j[4];
+        for (int l = 0; l < 4; ++l)
+          {
+            p[l] = std::min(k + l, pe - 1);
+            j[l] = second[p[l]];
+          }
+        v4 xv[4]; // x, y, z, V0 of the four j
+        transpose(_mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[0])),
+                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[1])),
+                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[2])),
+                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[3])), xv);
+        const double *gp[4] = {grad_w + 3 * static_cast<std::int64_t>(p[0]),
+                               grad_w + 3 * static_cast<std::int64_t>(p[1]),
+                               grad_w + 3 * static_cast<std::int64_t>(p[2]),
+                               grad_w + 3 * static_cast<std::int64_t>(p[3])};
+        v4 g[3];
+        for (int d = 0; d < 3; ++d)
+          g[d] = _mm256_set_pd(gp[3][d], gp[2][d], gp[1][d], gp[0][d]);
+        // lanes past pe repeat the last pair: they add nothing and are not scattered
+        const int n_valid = std::min(4, pe - k);
+        const v4  valid   = _mm256_castsi256_pd(
+          _mm256_cmpgt_epi64(_mm256_set1_epi64x(n_valid), _mm256_set_epi64x(3, 2, 1, 0)));
+        v4 di[3], dj[3];
+        for (int r = 0; r < 3; ++r)
+          {
+            const v4 d = _mm256_sub_pd(xv[r], x_i[r]);
+            di[r]      = _mm256_and_pd(valid, _mm256_mul_pd(xv[3], d));
+            dj[r]      = _mm256_mul_pd(V0i, d);
+          }
+        // entry (r, c) at 3 c + r (column-major, as Eigen stores a 3 x 3 matrix)
+        v4 t[9];
+        for (int cc = 0; cc < 3; ++cc)
+          for (int r = 0; r < 3; ++r)
+            {
+              acc[3 * cc + r] = _mm256_fmadd_pd(di[r], g[cc], acc[3 * cc + r]);
+              t[3 * cc + r]   = _mm256_mul_pd(dj[r], g[cc]);
+            }
+        v4 lo[4], hi[4];
+        transpose(t[0], t[1], t[2], t[3], lo); // lo[m]: entries 0..3 of pair m
+        transpose(t[4], t[5], t[6], t[7], hi); // hi[m]: entries 4..7
+        alignas(32) double last[4];
+        _mm256_store_pd(last, t[8]);
+        for (int m = 0; m < n_valid; ++m)
+          if (j[m] < e) // else: added by j's owner (cross-range share)
+            {
+              double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
+              _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
+              _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));
+              aj[8] += last[m];
+            }
+      }
+    for (int k = 0; k < 9; ++k)
+      own[k] = lane_sum(acc[k]);
+  }
 } // namespace sph::pair_kernel

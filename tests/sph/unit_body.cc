@@ -178,11 +178,13 @@ namespace
 
   TEST(SphBody, VectorisedPairForceIsTheScalarOneToRoundOff)
   {
-    // one state (random velocities: viscosity on approaching pairs; one step of flow: stress,
-    // F != I, hourglass terms) through the vectorised and the scalar pair force. The same terms
-    // in another order and with fused multiply-adds: each force agrees to round-off of the sum
-    // of its ~60 pair terms, 1e-12 of the largest force (the terms themselves are at most a few
-    // times the largest force, and double round-off is 1.1e-16 per operation)
+    // one state (random velocities: viscosity on approaching pairs; three steps of flow: stress,
+    // F != I, hourglass terms) through the vectorised and the scalar pair loops. The same terms
+    // in another order and with fused multiply-adds. F = I + O(1e-4) here is a sum of ~60 O(1)
+    // terms: another order moves it by ~1e-15, i.e. 1e-11 of its strain part, and the stress
+    // and forces follow (measured 5e-11 of the largest force with Mohr-Coulomb, 3e-11 elastic;
+    // 8e-15 when only the pair forces were vectorised). 1e-9 keeps a margin and still catches
+    // a wrong viscous or hourglass term, which carry ~1e-3 of the forces or more
     for (const Formulation form :
          {Formulation::total_lagrangian_corrected, Formulation::updated_lagrangian_corrected})
       {
@@ -222,7 +224,7 @@ namespace
             worst = std::max(worst, (force[0][i] - force[1][i]).norm());
           }
         ASSERT_GT(scale, 0.0) << "the state must be loaded, or the test proves nothing";
-        EXPECT_LT(worst, 1e-12 * scale) << "FORM " << static_cast<int>(form);
+        EXPECT_LT(worst, 1e-9 * scale) << "FORM " << static_cast<int>(form);
         // viscous and hourglass work of the three steps: sums of ~10^5 pair powers each
         ASSERT_GT(energy[1].viscous, 0.0) << "the viscosity must act, or the test proves nothing";
         EXPECT_NEAR(energy[0].viscous, energy[1].viscous, 1e-10 * std::abs(energy[1].viscous));

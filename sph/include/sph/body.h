@@ -236,6 +236,7 @@ namespace sph
     // src/pair_kernel.h, which reads each particle's fields from one record of 32 doubles
     bool                simd_ = false;
     std::vector<double> record_; // per particle: pair_kernel::record_size doubles (simd_ only)
+    std::vector<double> position_volume_; // per particle: x and V0 (TL stress pass, simd_ only)
     /// One column of a loaded face: its outer particle, then the particles below it.
     struct FaceColumn
     {
