@@ -340,8 +340,11 @@ namespace sph
   template <int dim>
   double Body<dim>::stable_time_step() const
   {
-    double dt = std::numeric_limits<double>::max();
-    for (std::size_t i = 0; i < p_.size(); ++i)
+    // a minimum is exact in any order: the threads' partial minima give the same bits
+    double     dt = std::numeric_limits<double>::max();
+    const long n  = static_cast<long>(p_.size());
+#pragma omp parallel for num_threads(n_threads_) schedule(static) reduction(min : dt)
+    for (long i = 0; i < n; ++i)
       dt = std::min(dt, p_.h[i] / (wave_speed_ + p_.v[i].norm()));
     return prm_.tssfac * dt;
   }

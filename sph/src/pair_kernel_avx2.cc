@@ -47,6 +47,79 @@ namespace sph::pair_kernel
         lane[k] = _mm256_broadcast_sd(r + k);
     }
 
+    /// Per-pair vectors of four pairs p[0..3] as lanes: out[d] = (v[p0][d], .., v[p3][d]).
+    SPH_AVX2 void pair_vectors(const double *v, const std::int32_t *p, v4 *out)
+    {
+      const double *q[4] = {v + 3 * static_cast<std::int64_t>(p[0]),
+                            v + 3 * static_cast<std::int64_t>(p[1]),
+                            v + 3 * static_cast<std::int64_t>(p[2]),
+                            v + 3 * static_cast<std::int64_t>(p[3])};
+      for (int d = 0; d < 3; ++d)
+        out[d] = _mm256_set_pd(q[3][d], q[2][d], q[1][d], q[0][d]);
+    }
+
+    /// The same for four consecutive pairs k..k+3: three loads and eight shuffles.
+    SPH_AVX2 void pair_vectors_run(const double *v, const std::int64_t k, v4 *out)
+    {
+      const v4 a = _mm256_loadu_pd(v + 3 * k);     // 0x 0y 0z 1x
+      const v4 b = _mm256_loadu_pd(v + 3 * k + 4); // 1y 1z 2x 2y
+      const v4 c = _mm256_loadu_pd(v + 3 * k + 8); // 2z 3x 3y 3z
+      const v4 m1 = _mm256_permute2f128_pd(a, b, 0x21); // 0z 1x 1y 1z
+      const v4 m2 = _mm256_permute2f128_pd(b, c, 0x21); // 2x 2y 2z 3x
+      const v4 A  = _mm256_permute2f128_pd(a, m2, 0x20); // 0x 0y 2x 2y
+      const v4 B  = _mm256_permute2f128_pd(m1, m2, 0x30); // 0z 1x 2z 3x
+      const v4 C  = _mm256_permute2f128_pd(m1, c, 0x31); // 1y 1z 3y 3z
+      out[0]      = _mm256_shuffle_pd(A, B, 0xA);
+      out[1]      = _mm256_shuffle_pd(A, C, 0x5);
+      out[2]      = _mm256_shuffle_pd(B, C, 0xA);
+    }
+
+    /// The pair data of a group of four: indices, gradients, hourglass factors; a short group
+    /// (n_valid < 4) repeats its last pair in the remaining lanes.
+    struct Group
+    {
+      std::int32_t p[4], j[4];
+      v4           g[3];
+      v4           factor;
+      v4           valid; ///< all bits set in the lanes of real pairs
+      int          n_valid;
+    };
+
+    /// Group of the consecutive pairs k.. of a particle (pairs up to pe).
+    SPH_AVX2 Group run_group(const double *grad_w, const double *hg_factor,
+                             const std::int32_t *second, const std::int32_t k,
+                             const std::int32_t pe)
+    {
+      Group gr;
+      gr.n_valid = std::min(4, pe - k);
+      if (gr.n_valid == 4)
+        {
+          for (int l = 0; l < 4; ++l)
+            {
+              gr.p[l] = k + l;
+              gr.j[l] = second[k + l];
+            }
+          pair_vectors_run(grad_w, k, gr.g);
+          gr.factor = hg_factor ? _mm256_loadu_pd(hg_factor + k) : _mm256_setzero_pd();
+          gr.valid  = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+        }
+      else
+        {
+          for (int l = 0; l < 4; ++l)
+            {
+              gr.p[l] = std::min(k + l, pe - 1);
+              gr.j[l] = second[gr.p[l]];
+            }
+          pair_vectors(grad_w, gr.p, gr.g);
+          gr.factor = hg_factor ? _mm256_set_pd(hg_factor[gr.p[3]], hg_factor[gr.p[2]],
+                                                hg_factor[gr.p[1]], hg_factor[gr.p[0]]) :
+                                  _mm256_setzero_pd();
+          gr.valid = _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(gr.n_valid),
+                                                            _mm256_set_epi64x(3, 2, 1, 0)));
+        }
+      return gr;
+    }
+
     /// What pair() gives for four pairs, in lanes.
     struct Lanes4
     {
@@ -55,16 +128,9 @@ namespace sph::pair_kernel
       v4 hg_power; ///< hourglass power [W]
     };
 
-    /// Four pairs (i lanes a, j lanes b, pair indices p).
-    SPH_AVX2 Lanes4 pair(const Args &arg, const v4 *a, const v4 *b, const std::int32_t *p)
+    /// Four pairs (i lanes a, j lanes b, gradients g, hourglass factors).
+    SPH_AVX2 Lanes4 pair(const Args &arg, const v4 *a, const v4 *b, const v4 *g, const v4 factor)
     {
-      const double *gp[4] = {arg.grad_w + 3 * static_cast<std::int64_t>(p[0]),
-                             arg.grad_w + 3 * static_cast<std::int64_t>(p[1]),
-                             arg.grad_w + 3 * static_cast<std::int64_t>(p[2]),
-                             arg.grad_w + 3 * static_cast<std::int64_t>(p[3])};
-      v4 g[3];
-      for (int d = 0; d < 3; ++d)
-        g[d] = _mm256_set_pd(gp[3][d], gp[2][d], gp[1][d], gp[0][d]);
       const v4 zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5);
 
       v4 xij[3], r2 = zero, vr = zero;
@@ -129,8 +195,6 @@ namespace sph::pair_kernel
                                     dx0[k], y);
               e_dot = _mm256_fmadd_pd(_mm256_fmadd_pd(half, y, xij[r]), xij[r], e_dot);
             }
-          const v4 factor = _mm256_set_pd(arg.hg_factor[p[3]], arg.hg_factor[p[2]],
-                                          arg.hg_factor[p[1]], arg.hg_factor[p[0]]);
           s_hg = _mm256_and_pd(r2_pos, _mm256_mul_pd(_mm256_mul_pd(factor, e_dot),
                                                      _mm256_sub_pd(zero, inv_r2)));
         }
@@ -173,7 +237,12 @@ namespace sph::pair_kernel
           }
         gather(a.record, i, la);
         gather(a.record, j, lb);
-        const Lanes4 r = pair(a, la, lb, p);
+        v4 g[3];
+        pair_vectors(a.grad_w, p, g);
+        const v4 factor = a.hg_factor ? _mm256_set_pd(a.hg_factor[p[3]], a.hg_factor[p[2]],
+                                                      a.hg_factor[p[1]], a.hg_factor[p[0]]) :
+                                        _mm256_setzero_pd();
+        const Lanes4 r = pair(a, la, lb, g, factor);
         // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its
         // hourglass power
         v4 rows[4];
@@ -201,22 +270,14 @@ namespace sph::pair_kernel
     v4       acc[5] = {zero, zero, zero, zero, zero};
     for (std::int32_t k = pb; k < pe; k += 4)
       {
-        std::int32_t p[4], j[4];
-        for (int l = 0; l < 4; ++l)
-          {
-            p[l] = std::min(k + l, pe - 1);
-            j[l] = second[p[l]];
-          }
-        gather(a.record, j, lb);
-        const Lanes4 r = pair(a, la, lb, p);
+        const Group gr = run_group(a.grad_w, a.hg_factor, second, k, pe);
+        gather(a.record, gr.j, lb);
+        const Lanes4 r = pair(a, la, lb, gr.g, gr.factor);
         // lanes past pe repeat the last pair: they add nothing to the sums
-        const int  n_valid = std::min(4, pe - k);
-        const v4   valid   = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
-          _mm256_set1_epi64x(n_valid), _mm256_set_epi64x(3, 2, 1, 0)));
         for (int d = 0; d < 3; ++d)
-          acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(valid, r.force[d]));
-        acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(valid, r.power));
-        acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(valid, r.hg_power));
+          acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(gr.valid, r.force[d]));
+        acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(gr.valid, r.power));
+        acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(gr.valid, r.hg_power));
         v4 out[4];
         transpose(r.force[0], r.force[1], r.force[2], r.power, out);
         double *o = rows + 4 * (k - pb);
@@ -242,28 +303,17 @@ namespace sph::pair_kernel
       acc[k] = zero;
     for (std::int32_t k = pb; k < pe; k += 4)
       {
-        std::int32_t p[4], j[4];
-        for (int l = 0; l < 4; ++l)
-          {
-            p[l] = std::min(k + l, pe - 1);
-            j[l] = second[p[l]];
-          }
-        v4 xv[4]; // x, y, z, V0 of the four j
+        const Group         gr = run_group(grad_w, nullptr, second, k, pe);
+        const std::int32_t *j  = gr.j;
+        const v4           *g  = gr.g;
+        const v4            valid = gr.valid;
+        const int           n_valid = gr.n_valid;
+        v4                  xv[4]; // x, y, z, V0 of the four j
         transpose(_mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[0])),
                   _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[1])),
                   _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[2])),
                   _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[3])), xv);
-        const double *gp[4] = {grad_w + 3 * static_cast<std::int64_t>(p[0]),
-                               grad_w + 3 * static_cast<std::int64_t>(p[1]),
-                               grad_w + 3 * static_cast<std::int64_t>(p[2]),
-                               grad_w + 3 * static_cast<std::int64_t>(p[3])};
-        v4 g[3];
-        for (int d = 0; d < 3; ++d)
-          g[d] = _mm256_set_pd(gp[3][d], gp[2][d], gp[1][d], gp[0][d]);
         // lanes past pe repeat the last pair: they add nothing and are not scattered
-        const int n_valid = std::min(4, pe - k);
-        const v4  valid   = _mm256_castsi256_pd(
-          _mm256_cmpgt_epi64(_mm256_set1_epi64x(n_valid), _mm256_set_epi64x(3, 2, 1, 0)));
         v4 di[3], dj[3];
         for (int r = 0; r < 3; ++r)
           {
