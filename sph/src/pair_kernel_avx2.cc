@@ -27,6 +27,26 @@ namespace sph::pair_kernel
       out[3]      = _mm256_permute2f128_pd(u1, u3, 0x31);
     }
 
+    /// Columns of the 4 x 4 block whose rows start at r0..r3 in memory: out[k] = (r0[k], r1[k],
+    /// r2[k], r3[k]). Half-row loads merged by vinsertf128 and one unpack per column: no
+    /// cross-lane permutes.
+    SPH_AVX2 void transpose_load(const double *r0, const double *r1, const double *r2,
+                                 const double *r3, v4 *out)
+    {
+      const v4 t0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r0)),
+                                         _mm_loadu_pd(r2), 1); // r0[0] r0[1] r2[0] r2[1]
+      const v4 t1 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r1)),
+                                         _mm_loadu_pd(r3), 1);
+      const v4 t2 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r0 + 2)),
+                                         _mm_loadu_pd(r2 + 2), 1);
+      const v4 t3 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r1 + 2)),
+                                         _mm_loadu_pd(r3 + 2), 1);
+      out[0] = _mm256_unpacklo_pd(t0, t1);
+      out[1] = _mm256_unpackhi_pd(t0, t1);
+      out[2] = _mm256_unpacklo_pd(t2, t3);
+      out[3] = _mm256_unpackhi_pd(t2, t3);
+    }
+
     /// The records of four particles as lanes: lane[k] = field k of particles p[0..3].
     SPH_AVX2 void gather(const double *record, const std::int32_t *p, v4 *lane)
     {
@@ -35,8 +55,7 @@ namespace sph::pair_kernel
       const double *r2 = record + record_size * static_cast<std::int64_t>(p[2]);
       const double *r3 = record + record_size * static_cast<std::int64_t>(p[3]);
       for (int b = 0; b < record_size; b += 4)
-        transpose(_mm256_loadu_pd(r0 + b), _mm256_loadu_pd(r1 + b), _mm256_loadu_pd(r2 + b),
-                  _mm256_loadu_pd(r3 + b), lane + b);
+        transpose_load(r0 + b, r1 + b, r2 + b, r3 + b, lane + b);
     }
 
     /// One particle's record in every lane.
@@ -309,10 +328,10 @@ namespace sph::pair_kernel
         const v4            valid = gr.valid;
         const int           n_valid = gr.n_valid;
         v4                  xv[4]; // x, y, z, V0 of the four j
-        transpose(_mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[0])),
-                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[1])),
-                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[2])),
-                  _mm256_loadu_pd(position_volume + 4 * static_cast<std::int64_t>(j[3])), xv);
+        transpose_load(position_volume + 4 * static_cast<std::int64_t>(j[0]),
+                       position_volume + 4 * static_cast<std::int64_t>(j[1]),
+                       position_volume + 4 * static_cast<std::int64_t>(j[2]),
+                       position_volume + 4 * static_cast<std::int64_t>(j[3]), xv);
         // lanes past pe repeat the last pair: they add nothing and are not scattered
         v4 di[3], dj[3];
         for (int r = 0; r < 3; ++r)
