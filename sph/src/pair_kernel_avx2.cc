@@ -190,11 +190,14 @@ namespace sph::pair_kernel
           const v4 pi = _mm256_mul_pd(_mm256_mul_pd(mu, _mm256_fmadd_pd(_mm256_set1_pd(arg.beta), mu,
                                                                         _mm256_set1_pd(-arg.alpha * arg.c))),
                                       _mm256_mul_pd(r2D, z));
+          // |grad W| / r = sqrt(|grad W|^2 r^2) / r^2: the square root does not wait for the
+          // division (both are long-latency; they now run side by side)
           v4 gw2 = zero;
           for (int d = 0; d < 3; ++d)
             gw2 = _mm256_fmadd_pd(g[d], g[d], gw2);
+          const v4 gw_r = _mm256_sqrt_pd(_mm256_mul_pd(gw2, r2));
           s_av = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(a[field::mass], b[field::mass]), pi),
-                               _mm256_sqrt_pd(_mm256_mul_pd(gw2, inv_r2)));
+                               _mm256_mul_pd(gw_r, inv_r2));
           // only approaching pairs (v_ij . x_ij < 0) at distinct positions
           s_av = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(vr, zero, _CMP_LT_OQ), r2_pos), s_av);
         }
