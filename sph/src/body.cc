@@ -238,14 +238,28 @@ namespace sph
       ++pair_begin_[pairs_.first[p] + 1];
     for (std::size_t i = 0; i < n; ++i)
       pair_begin_[i + 1] += pair_begin_[i];
-    const int T = n_threads_;
+    // ranges of equal work: a pair costs about one unit in each pass, a particle's stress
+    // update and loop overhead about per_particle (callgrind: ~930 instructions against ~150
+    // per pair; surface ranges hold more particles per pair)
+    const int         T            = n_threads_;
+    constexpr double  per_particle = 8.0;
+    const double      total        = static_cast<double>(n_p) + per_particle * n;
     range_begin_.assign(T + 1, static_cast<std::int32_t>(n));
     range_begin_[0] = 0;
     for (int t = 1; t < T; ++t)
-      range_begin_[t] = static_cast<std::int32_t>(
-        std::lower_bound(pair_begin_.begin(), pair_begin_.end(),
-                         static_cast<std::int32_t>(n_p * t / T)) -
-        pair_begin_.begin());
+      {
+        const double target = total * t / T;
+        std::size_t  lo = 0, hi = n; // first i whose work before it reaches the target
+        while (lo < hi)
+          {
+            const std::size_t mid = (lo + hi) / 2;
+            if (pair_begin_[mid] + per_particle * mid < target)
+              lo = mid + 1;
+            else
+              hi = mid;
+          }
+        range_begin_[t] = static_cast<std::int32_t>(lo);
+      }
     cross_.assign(T, {});
     cross_share_.assign(T, {});
     for (int t = 0; t < T; ++t)
@@ -257,6 +271,29 @@ namespace sph
         // room for the larger share: a dim x dim tensor (F sums) or a force and two powers
         // (and for a last group of four pairs written whole by the vectorised pair force)
         cross_share_[t].resize((cross_[t].size() + 3) * std::max(dim * dim, dim + 2));
+      }
+  }
+
+  template <int dim>
+  template <typename F>
+  void Body<dim>::for_cross_slices(const int t, F &&f) const
+  {
+    // the lists end to end, each padded to a multiple of four; thread t takes the t-th of
+    // n_threads_ equal parts, cut at multiples of four
+    const auto   pad   = [](const std::size_t k) { return (k + 3) / 4 * 4; };
+    std::size_t  total = 0;
+    for (const auto &list : cross_)
+      total += pad(list.size());
+    const std::size_t T = n_threads_;
+    const std::size_t b = total * t / T / 4 * 4;
+    const std::size_t e = t + 1 == n_threads_ ? total : total * (t + 1) / T / 4 * 4;
+    std::size_t       offset = 0;
+    for (std::size_t s = 0; s < cross_.size(); ++s)
+      {
+        const std::size_t lo = std::max(b, offset), hi = std::min(e, offset + cross_[s].size());
+        if (lo < hi)
+          f(static_cast<int>(s), lo - offset, hi - offset);
+        offset += pad(cross_[s].size());
       }
   }
 
@@ -366,12 +403,14 @@ namespace sph
 #pragma omp parallel num_threads(n_threads_)
         {
           const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
-          // shares of the second particle of the pairs that cross into a later range
+          // shares of the second particle of the pairs that cross into a later range (all
+          // threads take a slice: the last range has none of its own)
           for (int t = t0; t < n_threads_; t += nt)
-            {
-              double *share = cross_share_[t].data();
-              for (const std::int32_t p : cross_[t])
+            for_cross_slices(t, [&](const int s, const std::size_t kb, const std::size_t ke) {
+              double *share = cross_share_[s].data() + dd * kb;
+              for (std::size_t k = kb; k < ke; ++k)
                 {
+                  const std::int32_t p = cross_[s][k];
                   const int          i = pairs_.first[p], j = pairs_.second[p];
                   const Vector<dim> &g = grad_w_[p];
                   for (int r = 0; r < dim; ++r)
@@ -381,7 +420,7 @@ namespace sph
                         *share++ = d * g[c];
                     }
                 }
-            }
+            });
           if (simd) // (x, V0) of the particles in range, read by all as second particles
             for (int t = t0; t < n_threads_; t += nt)
               for (std::int32_t i = range_begin_[t]; i < range_begin_[t + 1]; ++i)
@@ -661,23 +700,26 @@ namespace sph
             pack_records(range_begin_[t], range_begin_[t + 1]);
 #pragma omp barrier
         }
+      // the cross-range pairs, a slice per thread (slices start at multiples of four: the
+      // vectorised force writes whole groups, and only a list's last group is short)
       for (int t = t0; t < n_threads_; t += nt)
-        {
-          double *share = cross_share_[t].data();
+        for_cross_slices(t, [&](const int s, const std::size_t kb, const std::size_t ke) {
+          double *share = cross_share_[s].data() + share_size * kb;
           if (simd)
-            pair_kernel::list_forces(args, cross_[t].data(), static_cast<int>(cross_[t].size()),
+            pair_kernel::list_forces(args, cross_[s].data() + kb, static_cast<int>(ke - kb),
                                      pairs_.first.data(), second, share);
           else
-            for (const std::int32_t p : cross_[t])
+            for (std::size_t k = kb; k < ke; ++k)
               {
-                double power, hg_power, f[dim];
+                const std::int32_t p = cross_[s][k];
+                double             power, hg_power, f[dim];
                 pair_force(p, side(pairs_.first[p]), pairs_.second[p], f, power, hg_power);
                 for (int d = 0; d < dim; ++d)
                   *share++ = f[d];
                 *share++ = power;
                 *share++ = hg_power;
               }
-        }
+        });
       // the pair forces of one particle (vectorised path): 4 doubles per pair
       std::vector<double> own(simd ? 4 * (max_pairs + 3) : 0);
 #pragma omp barrier

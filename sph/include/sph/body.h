@@ -188,6 +188,9 @@ namespace sph
     bool corrected() const;
     void build_pairs();            // pairs_, grad_w_ at the current positions, partition_pairs
     void partition_pairs();        // pair_begin_, range_begin_, cross_ from pairs_
+    // f(s, k_begin, k_end) for thread t's slice of the cross-range pair lists cross_[s]
+    template <typename F>
+    void for_cross_slices(int t, F &&f) const;
     void compute_correction();     // L from grad_w_
     void compute_area_vectors();   // area0_ from grad_w_
     // moves the normal parts of v in each loaded-face column onto its outer particle
