@@ -236,8 +236,12 @@ namespace sph
     pair_begin_.assign(n + 1, 0);
     for (std::size_t p = 0; p < n_p; ++p)
       ++pair_begin_[pairs_.first[p] + 1];
+    max_pairs_ = 0;
     for (std::size_t i = 0; i < n; ++i)
-      pair_begin_[i + 1] += pair_begin_[i];
+      {
+        max_pairs_ = std::max(max_pairs_, pair_begin_[i + 1]);
+        pair_begin_[i + 1] += pair_begin_[i];
+      }
     // ranges of equal work: a pair costs about one unit in each pass, a particle's stress
     // update and loop overhead about per_particle (callgrind: ~930 instructions against ~150
     // per pair; surface ranges hold more particles per pair)
@@ -461,7 +465,7 @@ namespace sph
                         // lanes (a fixed order), after its terms as second particle
                         double own[dd];
                         pair_kernel::particle_gradient(
-                          position_volume_.data(), grad_w_[0].data(), i, pair_begin_[i],
+                          position_volume_.data(), reinterpret_cast<const double *>(grad_w_.data()), i, pair_begin_[i],
                           pair_begin_[i + 1], pairs_.second.data(), e, p_.F[0].data(), own);
                         for (int r = 0; r < dim; ++r)
                           for (int c = 0; c < dim; ++c)
@@ -677,20 +681,20 @@ namespace sph
     std::vector<double> partial(2 * n_threads_, 0.0);
     constexpr int       share_size = dim + 2; // force, viscous power, hourglass power
     static_assert(share_size == pair_kernel::out_size || dim != 3);
+    // the kernel reads Eigen's small vectors and matrices as plain doubles
+    static_assert(sizeof(Vector<dim>) == dim * sizeof(double) &&
+                  sizeof(Tensor<dim>) == dim * dim * sizeof(double));
     // the vectorised pair force (3-D, AVX2): the same terms, four pairs at a time
     const bool        simd = simd_;
     pair_kernel::Args args;
     args.record    = record_.data();
-    args.grad_w    = grad_w_.empty() ? nullptr : grad_w_[0].data();
+    args.grad_w    = reinterpret_cast<const double *>(grad_w_.data()); // not read when there are no pairs
     args.hg_factor = hg > 0 ? hgf : nullptr;
     args.alpha     = alpha;
     args.beta      = beta;
     args.c         = c;
     args.av        = av;
-    std::int32_t max_pairs = 0;
-    if (simd)
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        max_pairs = std::max(max_pairs, pair_begin[i + 1] - pair_begin[i]);
+    const std::int32_t max_pairs = max_pairs_;
 #pragma omp parallel num_threads(n_threads_)
     {
       const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
