@@ -236,12 +236,8 @@ namespace sph
     pair_begin_.assign(n + 1, 0);
     for (std::size_t p = 0; p < n_p; ++p)
       ++pair_begin_[pairs_.first[p] + 1];
-    max_pairs_ = 0;
     for (std::size_t i = 0; i < n; ++i)
-      {
-        max_pairs_ = std::max(max_pairs_, pair_begin_[i + 1]);
-        pair_begin_[i + 1] += pair_begin_[i];
-      }
+      pair_begin_[i + 1] += pair_begin_[i];
     // ranges of equal work: a pair costs about one unit in each pass, a particle's stress
     // update and loop overhead about per_particle (callgrind: ~930 instructions against ~150
     // per pair; surface ranges hold more particles per pair)
@@ -694,7 +690,6 @@ namespace sph
     args.beta      = beta;
     args.c         = c;
     args.av        = av;
-    const std::int32_t max_pairs = max_pairs_;
 #pragma omp parallel num_threads(n_threads_)
     {
       const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
@@ -724,8 +719,6 @@ namespace sph
                 *share++ = hg_power;
               }
         });
-      // the pair forces of one particle (vectorised path): 4 doubles per pair
-      std::vector<double> own(simd ? 4 * (max_pairs + 3) : 0);
 #pragma omp barrier
       for (int t = t0; t < n_threads_; t += nt)
         {
@@ -751,18 +744,7 @@ namespace sph
                   // second particles' shares subtracted pair by pair (each j in ascending i)
                   double sum[pair_kernel::out_size];
                   pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1], second,
-                                               own.data(), sum);
-                  const double *o = own.data();
-                  for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p, o += 4)
-                    {
-                      const std::int32_t j = second[p];
-                      if (j < e) // else: subtracted by j's owner (cross_)
-                        {
-                          Vector<dim> &fj = f_int[j];
-                          for (int d = 0; d < dim; ++d)
-                            fj[d] -= o[d];
-                        }
-                    }
+                                               e, reinterpret_cast<double *>(f_int), sum);
                   for (int d = 0; d < dim; ++d)
                     fi[d] += sum[d];
                   sum_power += sum[dim];

@@ -53,12 +53,13 @@ namespace sph::pair_kernel
   void list_forces(const Args &a, const std::int32_t *list, int n, const std::int32_t *first,
                    const std::int32_t *second, double *out);
 
-  /// The pairs [pb, pe) of particle i (consecutive, second particle second[p]): the force on i
-  /// of pair p to rows[4 (p - pb) .. + 2] (rows[4 (p - pb) + 3]: its viscous power; rows must
-  /// hold 4 (pe - pb + 3) doubles), and the sums over the pairs of the force on i (sum[0..2]),
-  /// the viscous and the hourglass power (sum[3], sum[4]), each in a fixed order (4 lanes).
+  /// The pairs [pb, pe) of particle i (consecutive, second particle second[p]), four at a time:
+  /// subtracts the force on i of each pair from its second particle's f_int (3 per particle)
+  /// where j < e, pair by pair in pair order, and returns the sums over all the pairs of the
+  /// force on i (sum[0..2]), the viscous and the hourglass power (sum[3], sum[4]), each in a
+  /// fixed order (4 lanes).
   void particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
-                       const std::int32_t *second, double *rows, double *sum);
+                       const std::int32_t *second, std::int32_t e, double *f_int, double *sum);
 
   /// The deformation-gradient sums of total Lagrangian SPH over the pairs [pb, pe) of particle i
   /// (A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij, column-major), four pairs at a time.

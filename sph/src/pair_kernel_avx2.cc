@@ -283,7 +283,8 @@ namespace sph::pair_kernel
   __attribute__((target("avx2,fma"))) void particle_forces(const Args &a, const std::int32_t i,
                                                            const std::int32_t pb,
                                                            const std::int32_t pe,
-                                                           const std::int32_t *second, double *rows,
+                                                           const std::int32_t *second,
+                                                           const std::int32_t e, double *f_int,
                                                            double *sum)
   {
     v4 la[record_size], lb[record_size];
@@ -300,15 +301,21 @@ namespace sph::pair_kernel
           acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(gr.valid, r.force[d]));
         acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(gr.valid, r.power));
         acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(gr.valid, r.hg_power));
-        v4 out[4];
-        transpose(r.force[0], r.force[1], r.force[2], r.power, out);
-        double *o = rows + 4 * (k - pb);
-        for (int m = 0; m < 4; ++m)
-          _mm256_storeu_pd(o + 4 * m, out[m]);
+        // minus the force on each second particle j < e, pair by pair (ascending p)
+        v4 f[4];
+        transpose(r.force[0], r.force[1], r.force[2], zero, f);
+        for (int m = 0; m < gr.n_valid; ++m)
+          if (gr.j[m] < e) // else: subtracted by j's owner (cross-range share)
+            {
+              double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
+              _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
+              fj[2] -= _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
+            }
       }
     for (int c = 0; c < 5; ++c)
       sum[c] = lane_sum(acc[c]);
   }
+
 
   __attribute__((target("avx2,fma"))) void
   particle_gradient(const double *position_volume, const double *grad_w, const std::int32_t i,

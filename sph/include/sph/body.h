@@ -224,7 +224,6 @@ namespace sph
     // gather would: the results do not depend on the number of threads.
     std::vector<std::int32_t>              pair_begin_;  // per particle: its first pair as first
     std::vector<std::int32_t>              range_begin_; // per thread: its first particle
-    std::int32_t                           max_pairs_ = 0; // most pairs of one particle as first
     std::vector<std::vector<std::int32_t>> cross_;       // per thread: its pairs into later ranges
     std::vector<std::vector<double>>       cross_share_; // per thread: their shares of j (scratch)
     std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
