@@ -443,47 +443,83 @@ namespace coupling
     return {mesh_snapshot("cutter", *cutter_)};
   }
 
-  Summary CuttingTest::run(RunObserver &observer)
+  Summary CuttingTest::run(RunObserver &observer, const StateArrays *resume)
   {
     const auto wall_start      = std::chrono::steady_clock::now();
     const double row_interval  = t_end_ / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_end_ / std::max(1, prm_.output.n_snapshots);
-    double next_row = row_interval, next_snap = 0;
-    std::vector<HistoryRow> rows;
+    if (resume)
+    {
+      load_state(*resume);
+      for (const auto &r : rows_)
+        observer.history(r);
+    }
+    else
+    {
+      next_row_ = row_interval;
+      // the first snapshot: the undeformed block and the cutter in place
+      observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
+      next_snap_ = snap_interval;
+    }
     // per row: the rock's own kinetic and elastic energies (the quasi-static check; the cutter's
     // kinetic energy is the rig's prescribed motion, not a dynamic effect in the rock)
-    std::vector<double> rock_kinetic, rock_internal;
-    // the first snapshot: the undeformed block and the cutter in place
-    observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-    next_snap += snap_interval;
+    const std::vector<HistoryRow> &rows = rows_;
+    auto last_checkpoint                = std::chrono::steady_clock::now();
     while (time_ < t_end_)
     {
       step();
       if (n_steps_ % 50 == 0)
         check_stability();
       const bool last = time_ >= t_end_;
-      if (time_ >= next_row || last)
+      if (time_ >= next_row_ || last)
       {
         check_stability();
         const HistoryRow r = measure();
         const sph::Energies rock = body_->energies();
-        rock_kinetic.push_back(rock.kinetic);
-        rock_internal.push_back(rock.internal);
+        rock_kinetic_.push_back(rock.kinetic);
+        rock_internal_.push_back(rock.internal);
         if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
           throw InstabilityError("step " + std::to_string(n_steps_) +
                                  ": non-finite cutter force or energy; likely cause: a time step "
                                  "above the stable limit");
-        rows.push_back(r);
+        rows_.push_back(r);
         observer.history(r);
-        next_row += row_interval;
+        next_row_ += row_interval;
       }
-      if (time_ >= next_snap || last)
+      if (time_ >= next_snap_ || last)
       {
         observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-        next_snap += snap_interval;
+        next_snap_ += snap_interval;
       }
       if (n_steps_ % 20 == 0 || last)
         observer.progress(n_steps_, time_, std::min(1.0, time_ / t_end_));
+      if (last)
+        break;
+
+      // checkpoints: every N steps and/or M minutes, and a final one when asked to stop (as the
+      // laboratory driver, SpecimenTest::run)
+      const auto now        = std::chrono::steady_clock::now();
+      const bool stop_asked = observer.stop_requested() ||
+                              (prm_.output.stop_after_steps > 0 &&
+                               n_steps_ == static_cast<std::size_t>(prm_.output.stop_after_steps));
+      const bool by_steps = prm_.output.checkpoint_steps > 0 &&
+                            n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
+      const bool by_time = prm_.output.checkpoint_minutes > 0 &&
+                           std::chrono::duration<double>(now - last_checkpoint).count() >=
+                             60.0 * prm_.output.checkpoint_minutes;
+      if (stop_asked || by_steps || by_time)
+      {
+        StateArrays state;
+        save_state(state);
+        observer.checkpoint(n_steps_, state);
+        last_checkpoint = now;
+      }
+      if (stop_asked)
+      {
+        std::ostringstream os;
+        os << "stopped on request after step " << n_steps_ << ", t = " << time_ << " s";
+        throw RunInterrupted(os.str());
+      }
     }
 
     const CutterParameters &c = prm_.cutter;
@@ -526,8 +562,8 @@ namespace coupling
       s.max_displacement = std::max(s.max_displacement, r.displacement);
       if (!(s.peak_force > 0) || r.force < 0.1 * s.peak_force)
         continue;
-      if (rock_internal[k] > 0)
-        max_ratio = std::max(max_ratio, rock_kinetic[k] / rock_internal[k]);
+      if (rock_internal_[k] > 0)
+        max_ratio = std::max(max_ratio, rock_kinetic_[k] / rock_internal_[k]);
       max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
     }
     s.max_kinetic_to_internal_energy = max_ratio;
@@ -607,9 +643,10 @@ namespace coupling
     return s;
   }
 
-  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer)
+  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer,
+                           const StateArrays *resume)
   {
     CuttingTest test(parameters);
-    return test.run(observer);
+    return test.run(observer, resume);
   }
 } // namespace coupling

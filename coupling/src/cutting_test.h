@@ -66,7 +66,18 @@ namespace coupling
   public:
     explicit CuttingTest(const CaseParameters &parameters);
     ~CuttingTest();
-    Summary run(RunObserver &observer);
+    /// Runs to the end of the cutter's path. With `resume` (a state from RunObserver::checkpoint
+    /// of a run with the same parameters and thread count) continues that run bitwise: its
+    /// history rows are reported again first. Checkpoints as the laboratory driver takes them
+    /// (Output/Checkpoint interval, minutes; a final one and RunInterrupted when the observer asks
+    /// to stop or after Output/Stop after steps).
+    Summary run(RunObserver &observer, const StateArrays *resume = nullptr);
+
+    /// The run's state as named arrays (body., cutter., contact., driver.*). Defined in
+    /// cutting_state.cc.
+    void save_state(StateArrays &out) const;
+    /// Restores what save_state wrote. InputError when the state is of another case.
+    void load_state(const StateArrays &in);
 
     /// Number of block particles held (bottom and side layers).
     std::size_t n_fixed() const { return n_fixed_; }
@@ -114,8 +125,14 @@ namespace coupling
     std::vector<char> released_;   ///< per particle: failed and released from the contact
     std::size_t n_released_  = 0;
     double released_energy_  = 0; ///< penalty energy the released particles took with them [J]
+    // run-loop state, members so that a checkpoint holds them
+    double next_row_ = 0, next_snap_ = 0; ///< times of the next history row and snapshot [s]
+    std::vector<HistoryRow> rows_;
+    /// per row: the rock's own kinetic and elastic energies [J] (the quasi-static check)
+    std::vector<double> rock_kinetic_, rock_internal_;
   };
 
-  /// Runs one indentation or linear-cutting case (see CuttingTest).
-  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer);
+  /// Runs one indentation or linear-cutting case (see CuttingTest); `resume` as in run_case.
+  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer,
+                           const StateArrays *resume = nullptr);
 } // namespace coupling

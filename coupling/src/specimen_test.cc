@@ -1018,7 +1018,7 @@ namespace coupling
                    const StateArrays *resume)
   {
     if (parameters.test == "indentation" || parameters.test == "linear-cutting")
-      return run_cutting_case(parameters, observer);
+      return run_cutting_case(parameters, observer, resume);
     SpecimenTest test(parameters);
     return test.run(observer, resume);
   }

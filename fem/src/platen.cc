@@ -890,8 +890,12 @@ namespace fem
     put("Kv", im.Kv);
     put("f_ext", im.f_ext);
     put("du_prev", im.du_prev);
-    out[prefix + "scalars"] = {im.time_, im.dt_prev,    im.rigid_vz,         im.reaction,
-                               im.work,  im.dissipated, im.strain_energy_mid};
+    // the x motion and the frame force vector came with the disc cutter (a rigid body moved along
+    // x): scalars 7-10
+    out[prefix + "scalars"] = {im.time_,           im.dt_prev,         im.rigid_vz,
+                               im.reaction,        im.work,            im.dissipated,
+                               im.strain_energy_mid, im.rigid_vx,      im.reaction_xyz[0],
+                               im.reaction_xyz[1], im.reaction_xyz[2]};
   }
 
   void Platen::load_state(const std::map<std::string, std::vector<double>> &in,
@@ -916,7 +920,7 @@ namespace fem
     get("Kv", im.Kv);
     get("f_ext", im.f_ext);
     get("du_prev", im.du_prev);
-    const auto &s        = find("scalars", 7);
+    const auto &s        = find("scalars", 11);
     im.time_             = s[0];
     im.dt_prev           = s[1];
     im.rigid_vz          = s[2];
@@ -924,5 +928,7 @@ namespace fem
     im.work              = s[4];
     im.dissipated        = s[5];
     im.strain_energy_mid = s[6];
+    im.rigid_vx          = s[7];
+    std::copy(s.begin() + 8, s.begin() + 11, im.reaction_xyz);
   }
 } // namespace fem

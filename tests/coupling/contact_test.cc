@@ -1,6 +1,10 @@
 // Unit tests of the penalty contact between rock particles and a platen surface.
+#include "../../coupling/src/driver_common.h"
+
 #include <coupling/contact.h>
 #include <coupling/curve_analysis.h>
+
+#include <fem/platen.h>
 
 #include <gtest/gtest.h>
 
@@ -309,4 +313,76 @@ TEST(ContactRidge, AParticleOverAWarpedPlatensRidgeKeepsItsContact)
                 0.01 * prm.stiffness * penetration)
       << "x/r = " << x / r;
   }
+}
+
+TEST(ContactConvexApex, NoContactFarFromAWarpedConeMesh)
+{
+  // The indentation cone as the driver builds it: 90 degrees, 16 mm base, meshed at 1.5 mm, so its
+  // flank is bilinear quads whose corners lie on the cone but which are warped (corners at
+  // different radii). The closest-point iteration does not converge onto such a quad for a
+  // particle far from it and could stop inside it with a plane distance that said "penetrated":
+  // with the apex 2.04 mm below the rock's top, particles of the top layer 3 mm from the flank
+  // took 0.8 mm of penalty penetration from a face on the far side of the axis (170 J from
+  // nothing; cases/indentation/README.md). The quads' corners lie on the cone and a convex body
+  // holds its chords, so the mesh lies inside the ideal cone: a particle more than its diameter
+  // 2 r clear of the ideal cone is more than 2 r from every face and must feel nothing.
+  fem::PlatenGeometry g;
+  g.shape          = fem::PlatenShape::cone;
+  g.side           = fem::PlatenSide::above;
+  g.diameter       = 0.016;
+  g.tip_half_angle = 0.25 * 3.14159265358979323846;
+  g.thickness      = 0.0128;
+  g.center_x       = 0.0;
+  g.center_y       = 0.0;
+  const double apex = -2.04e-3;
+  g.contact_z       = apex;
+  fem::Parameters fp;
+  fp.model        = fem::PlatenModel::rigid;
+  fp.element_size = 1.5e-3;
+  const fem::Platen cone(g, fp);
+  const ContactSurface s = contact_surface(cone);
+  ASSERT_GT(s.faces.size(), 20u);
+  ContactParameters prm;
+  prm.stiffness     = 6.4e7;
+  prm.radius        = 0.75e-3;
+  prm.convex_master = true;
+  const double r    = prm.radius;
+
+  // every particle of a lattice around the tip at once (one apply, as the driver does)
+  std::vector<double> x;
+  for (double pz = -3e-3; pz <= 2e-3; pz += 0.25e-3)
+    for (double py = -6e-3; py <= 6e-3; py += 0.25e-3)
+      for (double px = -6e-3; px <= 6e-3; px += 0.25e-3)
+        x.insert(x.end(), {px, py, pz});
+  const std::size_t n = x.size() / 3;
+  const std::vector<double> v(3 * n, 0.0), m(n, 1e-5);
+  PenaltyContact contact(prm, n);
+  std::vector<double> fp_(3 * n, 0.0), fn(3 * s.n_nodes(), 0.0);
+  contact.apply(ContactParticles{x.data(), v.data(), m.data(), n}, s, 1e-7, fp_, fn);
+  std::size_t n_far = 0, n_touching = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    // distance to the ideal cone z - apex >= rho in the meridian plane: to the flank where the
+    // foot of the perpendicular lies on it, else to the apex
+    const double rho = std::hypot(x[3 * i], x[3 * i + 1]), zeta = x[3 * i + 2] - apex;
+    const double foot     = 0.5 * (rho + zeta);
+    const double distance = foot >= 0 ? (rho - zeta) / std::sqrt(2.0) : std::hypot(rho, zeta);
+    const double f = std::hypot(fp_[3 * i], fp_[3 * i + 1], fp_[3 * i + 2]);
+    if (distance > 2.0 * r)
+    {
+      ++n_far;
+      EXPECT_EQ(f, 0.0) << "particle at (" << x[3 * i] << ", " << x[3 * i + 1] << ", "
+                        << x[3 * i + 2] << ") m, " << distance / r << " r from the cone";
+    }
+    // well inside the penalty range of the ideal cone's flank (the mesh's chords lie within
+    // 0.1 mm inside it here): in contact
+    if (std::abs(distance) < 0.5 * r && foot > 1e-3 && rho < 6e-3)
+    {
+      ++n_touching;
+      EXPECT_GT(f, 0.0) << "particle at (" << x[3 * i] << ", " << x[3 * i + 1] << ", "
+                        << x[3 * i + 2] << ") m lost its contact";
+    }
+  }
+  ASSERT_GT(n_far, 10000u);
+  ASSERT_GT(n_touching, 100u) << "the lattice must reach the flank, or the test proves little";
 }

@@ -12,7 +12,8 @@
 namespace coupling
 {
   /// Version written into every checkpoint; read_checkpoint refuses others.
-  constexpr int checkpoint_version = 1;
+  /// 2: fem::Platen scalars gained the rigid x velocity and the frame force vector (disc cutter).
+  constexpr int checkpoint_version = 2;
 
   /// Writes `state` to `path` atomically (a temporary file renamed over `path`, so that a crash
   /// while writing leaves the previous checkpoint intact). std::runtime_error on I/O errors.

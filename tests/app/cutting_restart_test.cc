@@ -1,0 +1,220 @@
+// Checkpoint / restart and the stop signals of the cutter drivers (Test/Type = indentation,
+// linear-cutting), as tests/app/reliability_test.cc checks them for UCS / BTS / CTCS. Histories
+// are compared bitwise on purpose: the contract is "identical", not "close", for the same thread
+// count.
+#include "subprocess.h"
+
+#include <coupling/case_file.h>
+#include <coupling/checkpoint.h>
+#include <coupling/run_case.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <fcntl.h>
+#include <random>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+using namespace cosim_test;
+
+namespace
+{
+  const std::string indentation_case = source("cases/indentation/indentation.prm");
+  const std::string cutting_case     = source("cases/linear-cutting/linear-cutting.prm");
+
+  /// A cone pressed 6 mm into a Mohr-Coulomb block 30 mm on a side at 3 mm spacing (1,000
+  /// particles, 3,000 steps; particles fail under the tip), two threads so that the threaded
+  /// sums are exercised. A sharp tip at TSSFAC 0.9, not the case's rounded tip at 0.45: half the
+  /// steps, and a restart must continue any run bitwise, whatever its physics.
+  const std::vector<std::string> small_indentation = {
+    "Cutter/Tip radius=0",       "SPH/TSSFAC=0.9",
+    "Cutter/Shape=cone",         "SPH/Particle spacing=0.003", "Cutter/Penetration=0.006",
+    "Cutter/Speed=4",            "Cutter/Block length=0.03",   "Cutter/Block width=0.03",
+    "Cutter/Block height=0.03",  "SPH/Threads=2",              "Output/History rows=60",
+    "Output/Snapshots=3",        "Output/Progress=false"};
+
+  /// A 60 mm disc, 6 mm deep, across a 60 x 30 x 30 mm block at 3 mm spacing: rock fails and
+  /// leaves the contact as chip within the first 3,600 steps, so the chip flags and the contact
+  /// forces they read are part of the state. Only those steps are run (Output/Stop after
+  /// steps), which is all a restart needs; one thread (the indentation test runs two).
+  const std::vector<std::string> small_cut = {
+    "SPH/Particle spacing=0.003", "Cutter/Disc diameter=0.06",  "Cutter/Tip width=0.006",
+    "Cutter/Penetration=0.006",   "Cutter/Cut length=0.034",    "Cutter/Block length=0.06",
+    "Cutter/Block width=0.03",    "Cutter/Block height=0.03",   "SPH/Threads=1",
+    "Output/History rows=300",    "Output/Snapshots=3",         "Output/Progress=false"};
+
+  coupling::CaseParameters make(const std::string &file, std::vector<std::string> o,
+                                const std::vector<std::string> &extra = {})
+  {
+    o.insert(o.end(), extra.begin(), extra.end());
+    return coupling::read_case_file(file, o).parameters;
+  }
+
+  struct Recorder : coupling::RunObserver
+  {
+    std::vector<coupling::HistoryRow> rows;
+    coupling::StateArrays last_checkpoint;
+    std::size_t checkpoint_step = 0, n_checkpoints = 0;
+    void history(const coupling::HistoryRow &r) override { rows.push_back(r); }
+    void checkpoint(std::size_t step, const coupling::StateArrays &state) override
+    {
+      last_checkpoint = state;
+      checkpoint_step = step;
+      ++n_checkpoints;
+    }
+  };
+
+  ::testing::AssertionResult identical(const std::vector<coupling::HistoryRow> &a,
+                                       const std::vector<coupling::HistoryRow> &b)
+  {
+    static_assert(sizeof(coupling::HistoryRow) == 15 * sizeof(double));
+    if (a.size() != b.size())
+      return ::testing::AssertionFailure() << a.size() << " rows against " << b.size();
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (std::memcmp(&a[k], &b[k], sizeof(coupling::HistoryRow)) != 0)
+        return ::testing::AssertionFailure()
+               << "row " << k << " differs (t = " << a[k].time << " / " << b[k].time << " s, force "
+               << a[k].force << " / " << b[k].force << " N)";
+    return ::testing::AssertionSuccess();
+  }
+
+  double max_abs(const coupling::StateArrays &s, const std::string &name)
+  {
+    double m = 0;
+    for (const double v : s.at(name))
+      m = std::max(m, std::abs(v));
+    return m;
+  }
+
+  /// Runs `file` with `o` to step `end` (Output/Stop after steps), then stopped after a random
+  /// step in [lo, end - 5], through checkpoint.h5, and restarted to `end`: the histories must be
+  /// identical. Returns the checkpoint.
+  coupling::StateArrays stop_and_restart(const std::string &file,
+                                         const std::vector<std::string> &o, const long lo,
+                                         const long end)
+  {
+    const std::vector<std::string> to_end = {"Output/Stop after steps=" + std::to_string(end)};
+    Recorder whole;
+    EXPECT_THROW(coupling::run_case(make(file, o, to_end), whole), coupling::RunInterrupted);
+    EXPECT_GT(whole.rows.size(), 10u) << "the case must run long enough to test anything";
+    const unsigned seed = std::random_device{}();
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 random(seed);
+    const long stop_at = std::uniform_int_distribution<long>(lo, end - 5)(random);
+    SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(end));
+    const std::vector<std::string> stop = {"Output/Stop after steps=" + std::to_string(stop_at)};
+    Recorder first;
+    EXPECT_THROW(coupling::run_case(make(file, o, stop), first), coupling::RunInterrupted);
+    EXPECT_EQ(first.n_checkpoints, 1u);
+    EXPECT_EQ(first.checkpoint_step, std::size_t(stop_at));
+    EXPECT_LT(first.rows.size(), whole.rows.size());
+    // through the HDF5 file, as cosim run --restart does
+    Sandbox box;
+    const std::string path = (box.dir() / "checkpoint.h5").string();
+    coupling::write_checkpoint(path, first.last_checkpoint);
+    const coupling::StateArrays state = coupling::read_checkpoint(path);
+    Recorder second;
+    EXPECT_THROW(coupling::run_case(make(file, o, to_end), second, &state),
+                 coupling::RunInterrupted);
+    EXPECT_TRUE(identical(whole.rows, second.rows));
+    return state;
+  }
+} // namespace
+
+TEST(CutterRestart, IndentationStoppedAtARandomStepContinuesBitwise)
+{
+  // from step 1,200 on the cone is in the rock (contact, failed particles, loaded springs)
+  const coupling::StateArrays s = stop_and_restart(indentation_case, small_indentation, 1200, 2000);
+  EXPECT_GT(max_abs(s, "driver.contact_force"), 0.0) << "stopped before the cone touched";
+}
+
+TEST(CutterRestart, LinearCuttingWithReleasedChipContinuesBitwise)
+{
+  const coupling::StateArrays s = stop_and_restart(cutting_case, small_cut, 2800, 3600);
+  EXPECT_GT(max_abs(s, "driver.released"), 0.0) << "stopped before any chip was released";
+}
+
+TEST(CutterRestart, CheckpointOfALaboratoryCaseIsRefused)
+{
+  Recorder first;
+  const std::vector<std::string> ucs = {"SPH/Particle spacing=0.005", "Output/Stop after steps=5",
+                                        "Output/Progress=false"};
+  EXPECT_THROW(coupling::run_case(make(source("cases/ucs/ucs.prm"), ucs), first),
+               coupling::RunInterrupted);
+  Recorder second;
+  try
+  {
+    coupling::run_case(make(indentation_case, small_indentation), second, &first.last_checkpoint);
+    FAIL() << "a UCS checkpoint was accepted by an indentation case";
+  }
+  catch (const coupling::InputError &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("checkpoint"), std::string::npos) << e.what();
+  }
+}
+
+// Through cosim: SIGTERM to a running indentation (exit status 4, checkpoint written), then
+// cosim run --restart; history.csv must equal the uninterrupted run's byte for byte.
+TEST(CutterRestart, SigtermThenRestartGivesTheUninterruptedHistoryCsv)
+{
+  Sandbox box;
+  std::vector<std::string> args = {"run", indentation_case, "--quiet"};
+  for (const auto &s : small_indentation)
+    args.insert(args.end(), {"--set", s});
+  std::vector<std::string> full = args;
+  full.insert(full.end(), {"-o", "full"});
+  ASSERT_EQ(run_cosim(box, full).status, 0);
+
+  std::vector<std::string> cut = args;
+  cut.insert(cut.end(), {"-o", "cut", "--set", "Output/Checkpoint interval=200"});
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    if (chdir(box.dir().c_str()) != 0)
+      _exit(127);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 2);
+    std::vector<char *> argv;
+    const std::string binary = cosim_binary();
+    argv.push_back(const_cast<char *>(binary.c_str()));
+    for (auto &a : cut)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  // the first periodic checkpoint shows that the time loop runs: SIGTERM goes in then
+  bool seen = false;
+  for (int k = 0; k < 3000 && !seen; ++k)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    for (const auto &e : fs::directory_iterator(box.dir()))
+      seen = seen || (e.path().filename().string().rfind(".cut.tmp", 0) == 0 &&
+                      fs::exists(e.path() / "checkpoint.h5"));
+  }
+  EXPECT_TRUE(seen) << "no periodic checkpoint within 15 s";
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 4) << "SIGTERM must end the run cleanly with status 4";
+  const fs::path cut_dir = box.dir() / "cut";
+  EXPECT_TRUE(fs::exists(cut_dir / "checkpoint.h5"));
+  EXPECT_NE(read_file(cut_dir / "summary.json").find("\"status\": \"interrupted\""),
+            std::string::npos);
+  const std::string reference = read_file(box.dir() / "full" / "history.csv");
+  ASSERT_LT(read_file(cut_dir / "history.csv").size(), reference.size())
+    << "the run ended before SIGTERM arrived";
+
+  const Result restarted = run_cosim(box, {"run", "--restart", "cut", "--quiet"});
+  ASSERT_EQ(restarted.status, 0) << restarted.err;
+  EXPECT_TRUE(read_file(cut_dir / "history.csv") == reference) << "restarted history.csv differs";
+  const std::string summary = read_file(cut_dir / "summary.json");
+  EXPECT_EQ(summary.find("interrupted"), std::string::npos);
+  EXPECT_NE(summary.find("cavity_expansion_force_kN"), std::string::npos);
+}
