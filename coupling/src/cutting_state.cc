@@ -24,10 +24,10 @@ namespace coupling
 
     void append_row(std::vector<double> &out, const HistoryRow &r)
     {
-      out.insert(out.end(), {r.time, r.displacement, r.force, r.force_bottom, r.stress, r.strain,
-                             r.axial_gauge_strain, r.radial_strain, r.kinetic_energy,
-                             r.internal_energy, r.dissipated_energy, r.external_work, r.n_failed,
-                             r.rolling_force, r.side_force});
+      out.insert(out.end(),
+                 {r.time, r.displacement, r.force, r.force_bottom, r.stress, r.strain,
+                  r.axial_gauge_strain, r.radial_strain, r.kinetic_energy, r.internal_energy,
+                  r.dissipated_energy, r.external_work, r.n_failed, r.rolling_force, r.side_force});
     }
 
     HistoryRow row_at(const std::vector<double> &a, const std::size_t k)
@@ -92,7 +92,8 @@ namespace coupling
     auto find = [&](const std::string &name) -> const std::vector<double> & {
       const auto it = in.find(name);
       if (it == in.end())
-        throw InputError("checkpoint: no " + name + "; not a checkpoint of an indentation or "
+        throw InputError("checkpoint: no " + name +
+                         "; not a checkpoint of an indentation or "
                          "linear-cutting run");
       return it->second;
     };
@@ -105,8 +106,8 @@ namespace coupling
     if (d[7] != body_->n_particles() || d[5] != dt_ || d[6] != n_substeps_)
     {
       std::ostringstream os;
-      os << "checkpoint: it holds " << d[7] << " particles at dt = " << d[5]
-         << " s, this case has " << body_->n_particles() << " at dt = " << dt_
+      os << "checkpoint: it holds " << d[7] << " particles at dt = " << d[5] << " s, this case has "
+         << body_->n_particles() << " at dt = " << dt_
          << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
     }
@@ -115,7 +116,8 @@ namespace coupling
     const auto &released = find("driver.released"), &force = find("driver.contact_force");
     if (k.size() != n_rows || u.size() != n_rows || released.size() != released_.size() ||
         force.size() != force_on_particles_.size())
-      throw InputError("checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
+      throw InputError(
+        "checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
     try
     {
       body_->load_state(in, "body.");

@@ -31,21 +31,23 @@ namespace
   /// sums are exercised. A sharp tip at TSSFAC 0.9, not the case's rounded tip at 0.45: half the
   /// steps, and a restart must continue any run bitwise, whatever its physics.
   const std::vector<std::string> small_indentation = {
-    "Cutter/Tip radius=0",       "SPH/TSSFAC=0.9",
-    "Cutter/Shape=cone",         "SPH/Particle spacing=0.003", "Cutter/Penetration=0.006",
-    "Cutter/Speed=4",            "Cutter/Block length=0.03",   "Cutter/Block width=0.03",
-    "Cutter/Block height=0.03",  "SPH/Threads=2",              "Output/History rows=60",
-    "Output/Snapshots=3",        "Output/Progress=false"};
+    "Cutter/Tip radius=0",      "SPH/TSSFAC=0.9",
+    "Cutter/Shape=cone",        "SPH/Particle spacing=0.003",
+    "Cutter/Penetration=0.006", "Cutter/Speed=4",
+    "Cutter/Block length=0.03", "Cutter/Block width=0.03",
+    "Cutter/Block height=0.03", "SPH/Threads=2",
+    "Output/History rows=60",   "Output/Snapshots=3",
+    "Output/Progress=false"};
 
   /// A 60 mm disc, 6 mm deep, across a 60 x 30 x 30 mm block at 3 mm spacing: rock fails and
   /// leaves the contact as chip within the first 3,600 steps, so the chip flags and the contact
   /// forces they read are part of the state. Only those steps are run (Output/Stop after
   /// steps), which is all a restart needs; one thread (the indentation test runs two).
   const std::vector<std::string> small_cut = {
-    "SPH/Particle spacing=0.003", "Cutter/Disc diameter=0.06",  "Cutter/Tip width=0.006",
-    "Cutter/Penetration=0.006",   "Cutter/Cut length=0.034",    "Cutter/Block length=0.06",
-    "Cutter/Block width=0.03",    "Cutter/Block height=0.03",   "SPH/Threads=1",
-    "Output/History rows=300",    "Output/Snapshots=3",         "Output/Progress=false"};
+    "SPH/Particle spacing=0.003", "Cutter/Disc diameter=0.06", "Cutter/Tip width=0.006",
+    "Cutter/Penetration=0.006",   "Cutter/Cut length=0.034",   "Cutter/Block length=0.06",
+    "Cutter/Block width=0.03",    "Cutter/Block height=0.03",  "SPH/Threads=1",
+    "Output/History rows=300",    "Output/Snapshots=3",        "Output/Progress=false"};
 
   coupling::CaseParameters make(const std::string &file, std::vector<std::string> o,
                                 const std::vector<std::string> &extra = {})
@@ -93,9 +95,8 @@ namespace
   /// Runs `file` with `o` to step `end` (Output/Stop after steps), then stopped after a random
   /// step in [lo, end - 5], through checkpoint.h5, and restarted to `end`: the histories must be
   /// identical. Returns the checkpoint.
-  coupling::StateArrays stop_and_restart(const std::string &file,
-                                         const std::vector<std::string> &o, const long lo,
-                                         const long end)
+  coupling::StateArrays stop_and_restart(const std::string &file, const std::vector<std::string> &o,
+                                         const long lo, const long end)
   {
     const std::vector<std::string> to_end = {"Output/Stop after steps=" + std::to_string(end)};
     Recorder whole;
