@@ -6,6 +6,7 @@
 /// particles' contact forces of the last step are, because the chip release reads them first.
 
 #include "cutting_test.h"
+#include "driver_common.h"
 
 #include <coupling/run_case.h>
 
@@ -22,35 +23,6 @@ namespace coupling
     constexpr std::size_t n_scalars     = 18;
     constexpr std::size_t history_width = 15; // every HistoryRow field, in declaration order
 
-    void append_row(std::vector<double> &out, const HistoryRow &r)
-    {
-      out.insert(out.end(),
-                 {r.time, r.displacement, r.force, r.force_bottom, r.stress, r.strain,
-                  r.axial_gauge_strain, r.radial_strain, r.kinetic_energy, r.internal_energy,
-                  r.dissipated_energy, r.external_work, r.n_failed, r.rolling_force, r.side_force});
-    }
-
-    HistoryRow row_at(const std::vector<double> &a, const std::size_t k)
-    {
-      const double *p = a.data() + history_width * k;
-      HistoryRow r;
-      r.time               = p[0];
-      r.displacement       = p[1];
-      r.force              = p[2];
-      r.force_bottom       = p[3];
-      r.stress             = p[4];
-      r.strain             = p[5];
-      r.axial_gauge_strain = p[6];
-      r.radial_strain      = p[7];
-      r.kinetic_energy     = p[8];
-      r.internal_energy    = p[9];
-      r.dissipated_energy  = p[10];
-      r.external_work      = p[11];
-      r.n_failed           = p[12];
-      r.rolling_force      = p[13];
-      r.side_force         = p[14];
-      return r;
-    }
   } // namespace
 
   void CuttingTest::save_state(StateArrays &out) const
@@ -79,7 +51,7 @@ namespace coupling
     std::vector<double> history;
     history.reserve(history_width * rows_.size());
     for (const auto &r : rows_)
-      append_row(history, r);
+      append_history_row(history, r, history_width);
     out["driver.history"]       = std::move(history);
     out["driver.rock_kinetic"]  = rock_kinetic_;
     out["driver.rock_internal"] = rock_internal_;
@@ -143,7 +115,7 @@ namespace coupling
     released_energy_   = d[17];
     rows_.clear();
     for (std::size_t r = 0; r < n_rows; ++r)
-      rows_.push_back(row_at(h, r));
+      rows_.push_back(history_row_at(h, r, history_width));
     rock_kinetic_       = k;
     rock_internal_      = u;
     force_on_particles_ = force;

@@ -498,28 +498,8 @@ namespace coupling
 
       // checkpoints: every N steps and/or M minutes, and a final one when asked to stop (as the
       // laboratory driver, SpecimenTest::run)
-      const auto now        = std::chrono::steady_clock::now();
-      const bool stop_asked = observer.stop_requested() ||
-                              (prm_.output.stop_after_steps > 0 &&
-                               n_steps_ == static_cast<std::size_t>(prm_.output.stop_after_steps));
-      const bool by_steps = prm_.output.checkpoint_steps > 0 &&
-                            n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
-      const bool by_time = prm_.output.checkpoint_minutes > 0 &&
-                           std::chrono::duration<double>(now - last_checkpoint).count() >=
-                             60.0 * prm_.output.checkpoint_minutes;
-      if (stop_asked || by_steps || by_time)
-      {
-        StateArrays state;
-        save_state(state);
-        observer.checkpoint(n_steps_, state);
-        last_checkpoint = now;
-      }
-      if (stop_asked)
-      {
-        std::ostringstream os;
-        os << "stopped on request after step " << n_steps_ << ", t = " << time_ << " s";
-        throw RunInterrupted(os.str());
-      }
+      checkpoint_or_stop(observer, prm_.output, n_steps_, time_, last_checkpoint,
+                         [this](StateArrays &state) { save_state(state); });
     }
 
     const CutterParameters &c = prm_.cutter;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <sstream>
 
 namespace coupling
 {
@@ -122,5 +123,80 @@ namespace coupling
       std::fill(s.mass.begin(), s.mass.end(), 0.0);
     s.faces = quad_faces(platen.contact_faces());
     return s;
+  }
+
+  void append_history_row(std::vector<double> &out, const HistoryRow &r, const std::size_t width)
+  {
+    const double all[] = {r.time,
+                          r.displacement,
+                          r.force,
+                          r.force_bottom,
+                          r.stress,
+                          r.strain,
+                          r.axial_gauge_strain,
+                          r.radial_strain,
+                          r.kinetic_energy,
+                          r.internal_energy,
+                          r.dissipated_energy,
+                          r.external_work,
+                          r.n_failed,
+                          r.rolling_force,
+                          r.side_force};
+    static_assert(sizeof(all) == sizeof(HistoryRow), "a HistoryRow field is missing here");
+    out.insert(out.end(), all, all + width);
+  }
+
+  HistoryRow history_row_at(const std::vector<double> &a, const std::size_t k,
+                            const std::size_t width)
+  {
+    const double *p = a.data() + width * k;
+    double        all[15] = {};
+    std::copy(p, p + width, all);
+    HistoryRow r;
+    r.time               = all[0];
+    r.displacement       = all[1];
+    r.force              = all[2];
+    r.force_bottom       = all[3];
+    r.stress             = all[4];
+    r.strain             = all[5];
+    r.axial_gauge_strain = all[6];
+    r.radial_strain      = all[7];
+    r.kinetic_energy     = all[8];
+    r.internal_energy    = all[9];
+    r.dissipated_energy  = all[10];
+    r.external_work      = all[11];
+    r.n_failed           = all[12];
+    r.rolling_force      = all[13];
+    r.side_force         = all[14];
+    return r;
+  }
+
+  void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
+                          const std::size_t n_steps, const double time,
+                          std::chrono::steady_clock::time_point &last_checkpoint,
+                          const std::function<void(StateArrays &)> &save_state)
+  {
+    const auto now        = std::chrono::steady_clock::now();
+    const bool stop_asked = observer.stop_requested() ||
+                            (output.stop_after_steps > 0 &&
+                             n_steps == static_cast<std::size_t>(output.stop_after_steps));
+    const bool by_steps =
+      output.checkpoint_steps > 0 && n_steps % static_cast<std::size_t>(output.checkpoint_steps) == 0;
+    const bool by_time = output.checkpoint_minutes > 0 &&
+                         std::chrono::duration<double>(now - last_checkpoint).count() >=
+                           60.0 * output.checkpoint_minutes;
+    if (stop_asked || by_steps || by_time)
+      {
+        StateArrays state;
+        save_state(state);
+        observer.checkpoint(n_steps, state);
+        last_checkpoint = now;
+      }
+    if (stop_asked)
+      {
+        std::ostringstream os;
+        os << "stopped on request after step " << n_steps << ", t = " << time << " s";
+        throw RunInterrupted(os.str());
+      }
   }
 } // namespace coupling

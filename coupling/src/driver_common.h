@@ -10,7 +10,10 @@
 
 #include <fem/parameters.h>
 
+#include <chrono>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace sph
 {
@@ -50,4 +53,20 @@ namespace coupling
   /// FEM -> SPH: the contact-face nodes of a platen or cutter as the background particles,
   /// mirrored unchanged (a rigid body's nodes with zero mass).
   ContactSurface contact_surface(const fem::Platen &platen);
+
+  /// History rows in a checkpoint: the first `width` fields of HistoryRow in declaration order
+  /// (13: the laboratory tests, without the cutting forces; 15: every field).
+  void append_history_row(std::vector<double> &out, const HistoryRow &r, std::size_t width);
+
+  /// Row k of an array written by append_history_row with the same width.
+  HistoryRow history_row_at(const std::vector<double> &a, std::size_t k, std::size_t width);
+
+  /// After step n_steps: a checkpoint (save_state, then observer.checkpoint) every
+  /// Output/Checkpoint interval steps and/or minutes since last_checkpoint (updated), and a final
+  /// one with RunInterrupted thrown when the observer asks to stop or Output/Stop after steps is
+  /// reached.
+  void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
+                          std::size_t n_steps, double time,
+                          std::chrono::steady_clock::time_point &last_checkpoint,
+                          const std::function<void(StateArrays &)> &save_state);
 } // namespace coupling

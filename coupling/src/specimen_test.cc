@@ -689,32 +689,7 @@ namespace coupling
   namespace
   {
     // the laboratory-test columns (the cutting columns rolling_force, side_force stay zero here)
-    constexpr std::size_t history_width = 13;
-    void append_row(std::vector<double> &out, const HistoryRow &r)
-    {
-      out.insert(out.end(), {r.time, r.displacement, r.force, r.force_bottom, r.stress, r.strain,
-                             r.axial_gauge_strain, r.radial_strain, r.kinetic_energy,
-                             r.internal_energy, r.dissipated_energy, r.external_work, r.n_failed});
-    }
-    HistoryRow row_at(const std::vector<double> &a, std::size_t k)
-    {
-      const double *p = a.data() + history_width * k;
-      HistoryRow r;
-      r.time               = p[0];
-      r.displacement       = p[1];
-      r.force              = p[2];
-      r.force_bottom       = p[3];
-      r.stress             = p[4];
-      r.strain             = p[5];
-      r.axial_gauge_strain = p[6];
-      r.radial_strain      = p[7];
-      r.kinetic_energy     = p[8];
-      r.internal_energy    = p[9];
-      r.dissipated_energy  = p[10];
-      r.external_work      = p[11];
-      r.n_failed           = p[12];
-      return r;
-    }
+    constexpr std::size_t history_width = 13; // HistoryRow without the cutting forces
   } // namespace
 
   void SpecimenTest::save_state(StateArrays &out) const
@@ -740,7 +715,7 @@ namespace coupling
     std::vector<double> history;
     history.reserve(history_width * rows_.size());
     for (const auto &r : rows_)
-      append_row(history, r);
+      append_history_row(history, r, history_width);
     out["driver.history"] = std::move(history);
     out["driver.failure"] = failure_->state();
     out["driver.rock_kinetic"]  = rock_kinetic_;
@@ -800,7 +775,7 @@ namespace coupling
     rock_internal_ = u->second;
     rows_.clear();
     for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
-      rows_.push_back(row_at(h->second, k));
+      rows_.push_back(history_row_at(h->second, k, history_width));
   }
 
   ParticleSnapshot SpecimenTest::particle_snapshot() const
@@ -891,28 +866,8 @@ namespace coupling
         break;
 
       // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
-      const auto now        = std::chrono::steady_clock::now();
-      const bool stop_asked = observer.stop_requested() ||
-                              (prm_.output.stop_after_steps > 0 &&
-                               n_steps_ == static_cast<std::size_t>(prm_.output.stop_after_steps));
-      const bool by_steps = prm_.output.checkpoint_steps > 0 &&
-                            n_steps_ % static_cast<std::size_t>(prm_.output.checkpoint_steps) == 0;
-      const bool by_time = prm_.output.checkpoint_minutes > 0 &&
-                           std::chrono::duration<double>(now - last_checkpoint).count() >=
-                             60.0 * prm_.output.checkpoint_minutes;
-      if (stop_asked || by_steps || by_time)
-      {
-        StateArrays state;
-        save_state(state);
-        observer.checkpoint(n_steps_, state);
-        last_checkpoint = now;
-      }
-      if (stop_asked)
-      {
-        std::ostringstream os;
-        os << "stopped on request after step " << n_steps_ << ", t = " << time_ << " s";
-        throw RunInterrupted(os.str());
-      }
+      checkpoint_or_stop(observer, prm_.output, n_steps_, time_, last_checkpoint,
+                         [this](StateArrays &state) { save_state(state); });
     }
 
     // ---- what the laboratory reads off the curves
