@@ -176,38 +176,10 @@ TEST(CutterRestart, SigtermThenRestartGivesTheUninterruptedHistoryCsv)
 
   std::vector<std::string> cut = args;
   cut.insert(cut.end(), {"-o", "cut", "--set", "Output/Checkpoint interval=200"});
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0)
-  {
-    if (chdir(box.dir().c_str()) != 0)
-      _exit(127);
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 2);
-    std::vector<char *> argv;
-    const std::string binary = cosim_binary();
-    argv.push_back(const_cast<char *>(binary.c_str()));
-    for (auto &a : cut)
-      argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(binary.c_str(), argv.data());
-    _exit(127);
-  }
   // the first periodic checkpoint shows that the time loop runs: SIGTERM goes in then
-  bool seen = false;
-  for (int k = 0; k < 3000 && !seen; ++k)
-  {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    for (const auto &e : fs::directory_iterator(box.dir()))
-      seen = seen || (e.path().filename().string().rfind(".cut.tmp", 0) == 0 &&
-                      fs::exists(e.path() / "checkpoint.h5"));
-  }
-  EXPECT_TRUE(seen) << "no periodic checkpoint within 15 s";
-  kill(pid, SIGTERM);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  ASSERT_EQ(WEXITSTATUS(status), 4) << "SIGTERM must end the run cleanly with status 4";
+  const Interrupted stopped = sigterm_at_first_checkpoint(box, cut, 15.0);
+  EXPECT_TRUE(stopped.checkpoint_seen) << "no periodic checkpoint within 15 s";
+  ASSERT_EQ(stopped.status, 4) << "SIGTERM must end the run cleanly with status 4";
   const fs::path cut_dir = box.dir() / "cut";
   EXPECT_TRUE(fs::exists(cut_dir / "checkpoint.h5"));
   EXPECT_NE(read_file(cut_dir / "summary.json").find("\"status\": \"interrupted\""),

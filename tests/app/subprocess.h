@@ -1,12 +1,17 @@
 #pragma once
 // Runs the built cosim in a fresh temporary folder and reports status, stderr and what it wrote.
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
 #include <vector>
 
 namespace cosim_test
@@ -90,6 +95,59 @@ namespace cosim_test
     r.out = read_file(capture / "out");
     r.err = read_file(capture / "err");
     fs::remove_all(capture);
+    return r;
+  }
+
+  /// What sigterm_at_first_checkpoint saw.
+  struct Interrupted
+  {
+    bool checkpoint_seen = false; ///< a periodic checkpoint appeared before the signal
+    int  status          = -1;    ///< exit status of cosim, -1 if it did not exit normally
+  };
+
+  /// Starts cosim with `args` in the sandbox (stderr to /dev/null), waits up to `wait_s` seconds
+  /// for the first periodic checkpoint in its temporary result folder (".NAME.tmp..."), which shows
+  /// that the time loop runs, then sends SIGTERM and waits for it to exit.
+  inline Interrupted sigterm_at_first_checkpoint(const Sandbox &sandbox,
+                                                  std::vector<std::string> args,
+                                                  const double wait_s)
+  {
+    Interrupted r;
+    const std::string binary = cosim_binary();
+    const pid_t       pid    = fork();
+    if (pid < 0)
+      return r;
+    if (pid == 0)
+    {
+      if (chdir(sandbox.dir().c_str()) != 0)
+        _exit(127);
+      const int null = open("/dev/null", O_WRONLY);
+      dup2(null, 2);
+      std::vector<char *> argv;
+      argv.push_back(const_cast<char *>(binary.c_str()));
+      for (auto &a : args)
+        argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(binary.c_str(), argv.data());
+      _exit(127);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    while (!r.checkpoint_seen &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < wait_s)
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      for (const auto &e : fs::directory_iterator(sandbox.dir()))
+      {
+        const std::string name = e.path().filename().string();
+        r.checkpoint_seen      = r.checkpoint_seen ||
+                            (name.rfind(".", 0) == 0 && name.find(".tmp") != std::string::npos &&
+                             fs::exists(e.path() / "checkpoint.h5"));
+      }
+    }
+    kill(pid, SIGTERM);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
   }
 } // namespace cosim_test
