@@ -2,6 +2,7 @@
 // linear-cutting), as tests/app/reliability_test.cc checks them for UCS / BTS / CTCS. Histories
 // are compared bitwise on purpose: the contract is "identical", not "close", for the same thread
 // count.
+#include "history_compare.h"
 #include "subprocess.h"
 
 #include <coupling/case_file.h>
@@ -70,19 +71,6 @@ namespace
     }
   };
 
-  ::testing::AssertionResult identical(const std::vector<coupling::HistoryRow> &a,
-                                       const std::vector<coupling::HistoryRow> &b)
-  {
-    static_assert(sizeof(coupling::HistoryRow) == 15 * sizeof(double));
-    if (a.size() != b.size())
-      return ::testing::AssertionFailure() << a.size() << " rows against " << b.size();
-    for (std::size_t k = 0; k < a.size(); ++k)
-      if (std::memcmp(&a[k], &b[k], sizeof(coupling::HistoryRow)) != 0)
-        return ::testing::AssertionFailure()
-               << "row " << k << " differs (t = " << a[k].time << " / " << b[k].time << " s, force "
-               << a[k].force << " / " << b[k].force << " N)";
-    return ::testing::AssertionSuccess();
-  }
 
   double max_abs(const coupling::StateArrays &s, const std::string &name)
   {

@@ -1,6 +1,7 @@
 // Issue 9: instability detection, checkpoint / restart and determinism of the coupled run.
 // Every comparison of histories here is bitwise (memcmp of the doubles), on purpose: the contract
 // is "identical", not "close", for the same thread count.
+#include "history_compare.h"
 #include "subprocess.h"
 
 #include <coupling/case_file.h>
@@ -61,20 +62,6 @@ namespace
     }
   };
 
-  /// Bitwise equality of two histories (HistoryRow is 15 doubles, no padding).
-  ::testing::AssertionResult identical(const std::vector<coupling::HistoryRow> &a,
-                                       const std::vector<coupling::HistoryRow> &b)
-  {
-    static_assert(sizeof(coupling::HistoryRow) == 15 * sizeof(double));
-    if (a.size() != b.size())
-      return ::testing::AssertionFailure() << a.size() << " rows against " << b.size();
-    for (std::size_t k = 0; k < a.size(); ++k)
-      if (std::memcmp(&a[k], &b[k], sizeof(coupling::HistoryRow)) != 0)
-        return ::testing::AssertionFailure()
-               << "row " << k << " differs (t = " << a[k].time << " / " << b[k].time << " s, force "
-               << a[k].force << " / " << b[k].force << " N)";
-    return ::testing::AssertionSuccess();
-  }
 
   /// The reference run, once per test program.
   struct Reference
