@@ -17,16 +17,16 @@ namespace sph::pair_kernel
   {
     enum : int
     {
-    q       = 0,  ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
-    f       = 9,  ///< deformation gradient F, column-major [-]
-    x       = 18, ///< position [m]
-    v       = 21, ///< velocity [m/s]
-    x0      = 24, ///< reference position [m]
-    h       = 27, ///< smoothing length [m]
-    density = 28, ///< [kg/m^3]
-    mass    = 29, ///< [kg]
-    volume  = 30, ///< V0 (TL) or V (UL) [m^3]
-    record_size = 32
+      q           = 0,  ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
+      f           = 9,  ///< deformation gradient F, column-major [-]
+      x           = 18, ///< position [m]
+      v           = 21, ///< velocity [m/s]
+      x0          = 24, ///< reference position [m]
+      h           = 27, ///< smoothing length [m]
+      density     = 28, ///< [kg/m^3]
+      mass        = 29, ///< [kg]
+      volume      = 30, ///< V0 (TL) or V (UL) [m^3]
+      record_size = 32
     };
   } // namespace field
   using field::record_size;
@@ -37,9 +37,9 @@ namespace sph::pair_kernel
     const double *record    = nullptr; ///< record_size doubles per particle
     const double *grad_w    = nullptr; ///< 3 per pair: grad_i W_ij
     const double *hg_factor = nullptr; ///< 1 per pair; nullptr: no hourglass control
-    double        alpha = 0, beta = 0; ///< Monaghan viscosity coefficients [-]
-    double        c     = 0;           ///< sound speed of the viscosity [m/s]
-    bool          av    = false;       ///< viscosity on
+    double alpha = 0, beta = 0;        ///< Monaghan viscosity coefficients [-]
+    double c = 0;                      ///< sound speed of the viscosity [m/s]
+    bool av  = false;                  ///< viscosity on
   };
 
   /// Output per pair: force on the first particle (3) [N], viscous power, hourglass power [W].
