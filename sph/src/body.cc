@@ -238,9 +238,12 @@ namespace sph
       ++pair_begin_[pairs_.first[p] + 1];
     for (std::size_t i = 0; i < n; ++i)
       pair_begin_[i + 1] += pair_begin_[i];
-    // ranges of equal work: a pair costs about one unit in each pass, a particle's stress
-    // update and loop overhead about per_particle (callgrind: ~930 instructions against ~150
-    // per pair; surface ranges hold more particles per pair)
+    // ranges of equal work: a pair is one unit, a particle per_particle units (its stress
+    // update is ~930 instructions against ~130 + ~55 per pair in the two vectorised passes,
+    // callgrind, plus its loop and tail-group overhead; surface ranges hold more particles per
+    // pair). 8 was measured, not derived: `valgrind --tool=callgrind --separate-threads=yes
+    // sph_bench 0.0025 10 2` puts the two threads' force passes within 1 % and their stress
+    // passes 6 % apart)
     const int         T            = n_threads_;
     constexpr double  per_particle = 8.0;
     const double      total        = static_cast<double>(n_p) + per_particle * n;
@@ -454,48 +457,54 @@ namespace sph
                   for (int r = 0; r < dim; ++r)
                     for (int c = 0; c < dim; ++c)
                       a[r][c] = p_.F[i](r, c);
-                  if constexpr (dim == 3)
-                    if (simd)
-                      {
-                        // four pairs at a time (src/pair_kernel.h); i's own terms summed in
-                        // lanes (a fixed order), after its terms as second particle
-                        double own[dd];
-                        pair_kernel::particle_gradient(
-                          position_volume_.data(), reinterpret_cast<const double *>(grad_w_.data()), i, pair_begin_[i],
-                          pair_begin_[i + 1], pairs_.second.data(), e, p_.F[0].data(), own);
-                        for (int r = 0; r < dim; ++r)
-                          for (int c = 0; c < dim; ++c)
-                            a[r][c] += own[dim * c + r];
-                      }
-                  // i's position and volume in locals: the stores to p_.F[j] below are through
-                  // double pointers and would make the compiler reload them at every pair
-                  const Vector<dim> xi  = x[i];
-                  const double      V0i = V0[i];
-                  for (std::int32_t p = simd ? pair_begin_[i + 1] : pair_begin_[i];
-                       p < pair_begin_[i + 1]; ++p)
+                  if (simd)
                     {
-                      const std::int32_t j  = pairs_.second[p];
-                      const Vector<dim> &g  = grad_w_[p];
-                      const Vector<dim> &xj = x[j];
-                      const double       V0j = V0[j];
-                      // di = V0_j d, dj = V0_i d with d = x_j - x_i (the same bits as
-                      // -V0_i (x_i - x_j): IEEE negation and subtraction are exact mirrors)
-                      double di[dim], dj[dim];
-                      for (int r = 0; r < dim; ++r)
+                      if constexpr (dim == 3)
                         {
-                          const double d = xj[r] - xi[r];
-                          di[r]          = V0j * d;
-                          dj[r]          = V0i * d;
-                        }
-                      for (int r = 0; r < dim; ++r)
-                        for (int c = 0; c < dim; ++c)
-                          a[r][c] += di[r] * g[c];
-                      if (j < e) // else: added by j's owner (cross_)
-                        {
-                          Tensor<dim> &Aj = p_.F[j];
+                          // four pairs at a time (src/pair_kernel.h); i's own terms summed in
+                          // lanes (a fixed order), after its terms as second particle
+                          double own[dd];
+                          pair_kernel::particle_gradient(
+                            position_volume_.data(),
+                            reinterpret_cast<const double *>(grad_w_.data()), i, pair_begin_[i],
+                            pair_begin_[i + 1], pairs_.second.data(), e, p_.F[0].data(), own);
                           for (int r = 0; r < dim; ++r)
                             for (int c = 0; c < dim; ++c)
-                              Aj(r, c) += dj[r] * g[c];
+                              a[r][c] += own[dim * c + r];
+                        }
+                    }
+                  else
+                    {
+                      // i's position and volume in locals: the stores to p_.F[j] below are
+                      // through double pointers and would make the compiler reload them at
+                      // every pair
+                      const Vector<dim> xi  = x[i];
+                      const double      V0i = V0[i];
+                      for (std::int32_t p = pair_begin_[i]; p < pair_begin_[i + 1]; ++p)
+                        {
+                          const std::int32_t j  = pairs_.second[p];
+                          const Vector<dim> &g  = grad_w_[p];
+                          const Vector<dim> &xj = x[j];
+                          const double       V0j = V0[j];
+                          // di = V0_j d, dj = V0_i d with d = x_j - x_i (the same bits as
+                          // -V0_i (x_i - x_j): IEEE negation and subtraction are exact mirrors)
+                          double di[dim], dj[dim];
+                          for (int r = 0; r < dim; ++r)
+                            {
+                              const double d = xj[r] - xi[r];
+                              di[r]          = V0j * d;
+                              dj[r]          = V0i * d;
+                            }
+                          for (int r = 0; r < dim; ++r)
+                            for (int c = 0; c < dim; ++c)
+                              a[r][c] += di[r] * g[c];
+                          if (j < e) // else: added by j's owner (cross_)
+                            {
+                              Tensor<dim> &Aj = p_.F[j];
+                              for (int r = 0; r < dim; ++r)
+                                for (int c = 0; c < dim; ++c)
+                                  Aj(r, c) += dj[r] * g[c];
+                            }
                         }
                     }
                   Tensor<dim> A;
@@ -684,7 +693,8 @@ namespace sph
     const bool        simd = simd_;
     pair_kernel::Args args;
     args.record    = record_.data();
-    args.grad_w    = reinterpret_cast<const double *>(grad_w_.data()); // not read when there are no pairs
+    // (not read when there are no pairs)
+    args.grad_w    = reinterpret_cast<const double *>(grad_w_.data());
     args.hg_factor = hg > 0 ? hgf : nullptr;
     args.alpha     = alpha;
     args.beta      = beta;
