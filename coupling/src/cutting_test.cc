@@ -139,6 +139,7 @@ namespace coupling
     }
     apply_strength_scatter(*body_, prm_.rock, dx);
     volume0_ = lattice.volumes;
+    contact_radius_ = 0.5 * lattice.cell_size[2];
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a
     // block clamped in the rig); the top face is free, and so is the entry face x = 0 of a cut
     const auto &x0 = body_->reference_positions();
@@ -233,10 +234,10 @@ namespace coupling
     start_x_ = g.center_x;
     if (c.shape == "wedge" || c.shape == "cone")
     {
-      // a sharp tip between lattice columns first meets a particle (contact radius r = dx/2, centre
-      // at z = -r) at the tip depth d = r + (rho cos(alpha) - r) / sin(alpha), rho the particle's
+      // a sharp tip between lattice columns first meets a particle (contact radius r, half the
+      // layer distance; centre at z = -r) at the tip depth d = r + (rho cos(alpha) - r) / sin(alpha), rho the particle's
       // lateral distance from the tip: the tip starts there instead of at z = 0 (no contact yet)
-      const double r = 0.5 * dx, a = g.tip_half_angle;
+      const double r = contact_radius_, a = g.tip_half_angle;
       double rho_min = std::numeric_limits<double>::max();
       for (const auto &p : body_->reference_positions())
         if (p[2] > -dx)
@@ -293,7 +294,7 @@ namespace coupling
       prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_sph);
     contact_stiffness_ = cp.stiffness;
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
-    cp.radius                                = 0.5 * prm_.sph.spacing;
+    cp.radius                                = contact_radius_;
     // every cutter is convex towards the rock (flat punch: flat, where both rules agree)
     cp.convex_master = true;
     contact_         = std::make_unique<PenaltyContact>(cp, body_->n_particles());

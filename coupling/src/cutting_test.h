@@ -106,6 +106,9 @@ namespace coupling
     std::unique_ptr<PenaltyContact> contact_;
     std::vector<double> volume0_; ///< initial particle volumes [m^3]
     std::size_t n_fixed_ = 0;
+    /// Half the lattice cell along z (the block's height is split into round(H / dx) layers):
+    /// the top layer's surface and so the cutter's contact radius [m].
+    double contact_radius_ = 0;
     double start_x_      = 0; ///< tip x at the start [m]
     // path: vertical phase [0, t_down_], dwell to t_cut_start_, cut [t_cut_start_, t_end_]
     double ramp_down_ = 0, t_down_ = 0, t_cut_start_ = 0, ramp_cut_ = 0, t_end_ = 0;

@@ -212,6 +212,7 @@ namespace coupling
                                          : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
+    contact_radius_               = 0.5 * lattice.cell_size[2];
     try
     {
       body_ = std::make_unique<sph::Body<3>>(numerics(prm_.sph), material(prm_.rock),
@@ -311,7 +312,7 @@ namespace coupling
       };
       // the contact radius is measured along the face normal: a particle under a face of slope m
       // needs a vertical clearance r_c sqrt(1 + m^2)
-      const double r_c = 0.5 * dx;
+      const double r_c = contact_radius_;
       top_z = -1e300, bottom_z = 1e300;
       for (const auto &p : body_->positions())
       {
@@ -320,6 +321,25 @@ namespace coupling
         top_z                  = std::max(top_z, p[2] + clearance - z);
         bottom_z               = std::min(bottom_z, p[2] - clearance + z);
       }
+    }
+    else
+    {
+      // flat platens at the specimen's faces, unless a particle reaches past them: a disc whose
+      // diameter the spacing does not divide has round(D / dx) cells, up to dx / 2 more than D,
+      // and would start pressed into both platens (an impulse at the first step). The cylinder's
+      // layers fit its length exactly (cells of L / round(L / dx) along z and a contact radius
+      // of half of that), so its platens stay at 0 and L; slack: round-off of the coordinates.
+      const double slack = 1e-9 * dx;
+      double       hi = -1e300, lo = 1e300;
+      for (const auto &p : body_->positions())
+      {
+        hi = std::max(hi, p[2] + contact_radius_);
+        lo = std::min(lo, p[2] - contact_radius_);
+      }
+      if (hi > top_z + slack)
+        top_z = hi;
+      if (lo < bottom_z - slack)
+        bottom_z = lo;
     }
     try
     {
@@ -400,7 +420,7 @@ namespace coupling
     ContactParameters cp;
     cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
     cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
-    cp.radius                                = 0.5 * prm_.sph.spacing;
+    cp.radius                                = contact_radius_;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     if (!factor.empty())

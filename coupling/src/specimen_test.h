@@ -87,6 +87,9 @@ namespace coupling
     std::unique_ptr<fem::Platen> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
     double true_area_ = 0, lattice_area_ = 0;
+    /// Half the lattice cell along the loading axis z [m]: where an outer particle's surface is,
+    /// and so the platens' contact radius (the cylinder's layers are L / round(L / dx) apart).
+    double contact_radius_ = 0;
     double dt_           = 0;
     int n_substeps_      = 1;
     double time_         = 0;

@@ -146,6 +146,7 @@ namespace sph
     scale_volumes(out);
     Vector<dim> step = Vector<dim>::Constant(dx);
     step[dim - 1]    = dz;
+    out.cell_size    = step;
     order_along_morton_curve(out, step);
     return out;
   }
@@ -213,6 +214,7 @@ namespace sph
     Vector<dim> step = Vector<dim>::Constant(dx);
     if constexpr (dim == 3)
       step[1] = dy;
+    out.cell_size = step;
     order_along_morton_curve(out, step);
     return out;
   }
@@ -257,6 +259,7 @@ namespace sph
     out.true_section_area  = out.true_volume / (upper[dim - 1] - lower[dim - 1]);
     out.lattice_section_area = out.true_section_area;
     scale_volumes(out);
+    out.cell_size = cell;
     order_along_morton_curve(out, cell);
     return out;
   }

@@ -50,6 +50,24 @@ TEST(CoupledBts, CrackStartsAtTheCentreAndRunsAlongTheLoadedDiameter)
   EXPECT_EQ(s.stop_reason, "post-peak drop");
 }
 
+TEST(CoupledBts, ADiameterThatTheSpacingDoesNotDivideStartsClearOfThePlatens)
+{
+  // 50 mm / 2.2 mm = 22.7: the disc has 23 cells across, its outer particles reach 0.3 mm past
+  // the nominal diameter, and flat platens at 0 and D started pressed into them (the run stopped
+  // as unstable at step 1, 315 m/s). The platens now start where the outermost particles touch.
+  CaseParameters p     = m1("BTS");
+  p.length             = 0.025;
+  p.sph.spacing        = 2.2e-3;
+  p.loading.end_strain = 0.004;
+  RunObserver quiet;
+  const Summary s = run_case(p, quiet);
+  EXPECT_EQ(s.stop_reason, "post-peak drop");
+  // between the converged 13.5 MPa (1 and 1.25 mm: 13.56, 13.52) and the 2.5 mm value 14.98,
+  // with a margin of half a MPa each way for the lattice's different facets (2.2 mm: 13.91)
+  EXPECT_GT(s.peak_stress, 13.0e6);
+  EXPECT_LT(s.peak_stress, 15.5e6);
+}
+
 TEST(CoupledUcs, StrengthScatterIsHonouredAndWeakensTheSpecimen)
 {
   CaseParameters p     = m1("UCS");

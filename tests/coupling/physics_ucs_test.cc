@@ -80,6 +80,22 @@ TEST(CoupledUcs, MohrCoulombPeakIsTheClosedFormStrength)
   EXPECT_LT(s.max_force_imbalance, 0.1);
 }
 
+TEST(CoupledUcs, ASpacingThatDoesNotDivideTheLengthKeepsTheStrength)
+{
+  // 100 mm / 4.4 mm = 22.7: the lattice takes 23 layers 4.35 mm apart. With the contact radius
+  // at half the spacing (2.2 mm) the end layers started 26 um inside both platens, and the first
+  // step flung them off (the run stopped as unstable at step 1; at 1.5 mm it ran and "peaked"
+  // at 105 MPa). The contact radius is now half the layer distance: the same 1.5 % as above.
+  CaseParameters p = mohr_coulomb_ucs();
+  p.sph.spacing    = 4.4e-3;
+  const double phi = 63.68 * M_PI / 180;
+  const double ucs = 2 * 32.99e6 * std::cos(phi) / (1 - std::sin(phi));
+  Keep rows;
+  const Summary s = run_case(p, rows);
+  EXPECT_NEAR(s.peak_stress / ucs, 1.0, 0.015);
+  EXPECT_EQ(s.stop_reason, "post-peak drop");
+}
+
 TEST(CoupledUcs, QuasiStaticFlagSeparatesTheDerivedRateFromAnImpact)
 {
   // the quasi-static check counts the rock's kinetic energy beyond its affine (homogeneous

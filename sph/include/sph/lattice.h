@@ -19,6 +19,10 @@ namespace sph
     std::vector<Vector<dim>> positions; ///< cell centres [m]
     std::vector<double>      volumes;   ///< particle volumes [m^dim], sum = true body volume
     double spacing = 0;                 ///< lattice spacing dx [m]
+    /// Edge lengths of a lattice cell along each axis [m]: dx, except along an axis whose side
+    /// dx does not divide (the cylinder's axis, the disc's thickness, a block's sides), where the
+    /// side is split into round(side/dx) equal cells. A particle reaches half a cell out.
+    Vector<dim> cell_size = Vector<dim>::Zero();
     /// Cross-section normal to the loading axis (UCS / CTCS) or, for a disc, the diametral plane
     /// x = 0 that splits (BTS): number of particles in one lattice layer times dx^(dim-1)
     /// [m^(dim-1)].
