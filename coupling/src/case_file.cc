@@ -72,6 +72,8 @@ namespace coupling
       {"Rock", "UCS", Kind::optional_real, "", "", "uniaxial strength sigma_ci [Pa]; empty = from Rock/Group"},
       {"Rock", "Softening strain", Kind::real, "0.002", "", "plastic strain to residual strength [-]"},
       {"Rock", "Residual fraction", Kind::real, "0.1", "", "residual / peak strength [-]"},
+      {"Rock", "Residual friction angle", Kind::optional_real, "", "",
+       "[deg] friction angle of fully damaged (crushed) rock, reached with the residual strength; empty = the friction angle throughout (mohr-coulomb models)"},
       {"Rock", "Strength scatter", Kind::real, "0", "",
        "Weibull modulus m of a per-particle strength factor (mean 1) on c, tensile strength and Hoek-Brown s; 0 = homogeneous rock, else >= 1 (rock: about 5-20)"},
       {"Rock", "Scatter seed", Kind::integer, "1", "", "seed of the strength scatter: the same seed, the same rock"},
@@ -741,6 +743,7 @@ namespace coupling
     rock.hoek_brown_mi = r.real("Rock/Hoek-Brown mi");
     rock.softening_strain = r.real("Rock/Softening strain");
     rock.residual_fraction = r.real("Rock/Residual fraction");
+    rock.residual_friction_angle = r.optional("Rock/Residual friction angle").value_or(-1.0);
     rock.strength_scatter = r.real("Rock/Strength scatter");
     rock.scatter_seed = r.integer("Rock/Scatter seed");
 
@@ -766,6 +769,15 @@ namespace coupling
     }
     r.require(rock.softening_strain > 0 && rock.softening_strain < 1, "Rock/Softening strain", "must be in (0, 1)");
     r.require(rock.residual_fraction >= 0 && rock.residual_fraction <= 1, "Rock/Residual fraction", "must be in [0, 1]");
+    if (r.optional("Rock/Residual friction angle"))
+    {
+      r.require(needs_mc, "Rock/Residual friction angle",
+                "softens the Mohr-Coulomb friction angle; Rock/Model = " + rock.model + " has none (leave it empty)");
+      r.require(rock.residual_friction_angle > 0 && rock.residual_friction_angle <= rock.friction_angle,
+                "Rock/Residual friction angle", "must be in (0, friction angle = " + format(rock.friction_angle) + "] degrees");
+      r.require(rock.residual_friction_angle >= rock.dilation_angle, "Rock/Residual friction angle",
+                "must be at least Rock/Dilation angle = " + format(rock.dilation_angle) + " degrees");
+    }
     r.require(rock.strength_scatter == 0 || (rock.strength_scatter >= 1 && rock.strength_scatter <= 1000),
               "Rock/Strength scatter", "must be 0 (homogeneous) or a Weibull modulus in [1, 1000]");
     r.require(rock.strength_scatter == 0 || rock.model != "elastic", "Rock/Strength scatter",

@@ -58,6 +58,8 @@ namespace coupling
       m.hb_mb             = r.hoek_brown_mi;
       m.softening_strain  = r.softening_strain;
       m.residual_fraction = r.residual_fraction;
+      m.residual_friction_angle =
+        r.residual_friction_angle < 0 ? -1.0 : deg(r.residual_friction_angle);
       return m;
     }
 

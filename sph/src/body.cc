@@ -146,6 +146,12 @@ namespace sph
             "hoek_brown needs hb_sigma_ci > 0, hb_mb > 0, hb_s > 0 and 0 < hb_a < 1");
     require(material_.residual_fraction >= 0 && material_.residual_fraction <= 1,
             "MaterialParameters::residual_fraction must be in [0, 1]");
+    require(material_.residual_friction_angle < 0 ||
+              (material_.residual_friction_angle > 0 &&
+               material_.residual_friction_angle < 0.5 * 3.141592653589793 &&
+               material_.residual_friction_angle >= material_.dilation_angle),
+            "MaterialParameters::residual_friction_angle must be < 0 (none) or in "
+            "[dilation angle, pi/2)");
     require(positions.size() == volumes.size(), "positions and volumes differ in length");
     require(!positions.empty(), "no particles");
 

@@ -173,6 +173,17 @@ TEST(BadInput, DilationAboveFriction)
   expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Dilation angle=70"}, {"Rock/Dilation angle", "friction angle"});
 }
 
+TEST(BadInput, ResidualFrictionAngleAboveFrictionOrWithoutMohrCoulomb)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Residual friction angle=70"},
+                   {"Rock/Residual friction angle", "friction angle"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Residual friction angle=30", "--set", "Rock/Model=elastic"},
+                   {"Rock/Residual friction angle", "elastic"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Residual friction angle=abc"},
+                   {"Rock/Residual friction angle", "'abc'"});
+}
+
 TEST(BadInput, NanValue)
 {
   Sandbox box;

@@ -9,7 +9,8 @@ namespace
   using namespace sph;
   using namespace sph::rock;
 
-  RockParameters mc(const double tensile = 0, const double softening = 0)
+  RockParameters mc(const double tensile = 0, const double softening = 0,
+                    const double residual_phi_deg = -1)
   {
     MaterialParameters m;
     m.model             = tensile > 0 ? RockModel::mohr_coulomb_cutoff : RockModel::mohr_coulomb;
@@ -21,6 +22,7 @@ namespace
     m.tensile_strength  = tensile;
     m.softening_strain  = softening;
     m.residual_fraction = 0.2;
+    m.residual_friction_angle = residual_phi_deg < 0 ? -1.0 : residual_phi_deg * M_PI / 180;
     return make_rock_parameters(m);
   }
 
@@ -124,6 +126,51 @@ namespace
     // unloading leaves damage as it is
     const auto up = update_mohr_coulomb(stress, Tensor3(-de), state, p);
     EXPECT_GE(up.state.damage, state.damage);
+  }
+
+  TEST(SphMohrCoulomb, ResidualFrictionAngleSoftensTheEnvelopeWithTheDamage)
+  {
+    // phi 40 deg -> 30 deg and c -> 0.2 c over a plastic strain of 1e-3, under a confined
+    // compression (the crushed zone under a cutter): every plastic state lies on the surface of
+    // its damage's c(d) and phi(d) = 40 + (30 - 40) d (1e-8 of the stress scale, as above)
+    const RockParameters p = mc(0, 1e-3, 30);
+    MaterialState        state;
+    Tensor3              stress = Tensor3::Zero();
+    const Tensor3        de     = strain_for({-6e6, -6e6, -40e6}, p);
+    for (int k = 0; k < 60; ++k)
+      {
+        const auto up = update_mohr_coulomb(stress, de, state, p);
+        stress        = up.stress;
+        state         = up.state;
+        if (state.plastic_strain > 0)
+          {
+            const double c   = p.cohesion * strength_factor(state.damage, p);
+            const double phi = (40.0 + (30.0 - 40.0) * state.damage) * M_PI / 180;
+            EXPECT_NEAR(mohr_coulomb_yield(principal(stress), c, std::sin(phi), std::cos(phi)), 0.0,
+                        1e-8 * 500e6)
+              << "step " << k << ", damage " << state.damage;
+          }
+      }
+    ASSERT_NEAR(state.damage, 1.0, 1e-12) << "the loading must reach the residual state";
+    // crushed: on the 30 deg envelope of the residual cohesion, well inside the 40 deg one
+    const Principal s  = principal(stress);
+    const double    cr = 0.2 * p.cohesion, r30 = 30.0 * M_PI / 180;
+    EXPECT_NEAR(mohr_coulomb_yield(s, cr, std::sin(r30), std::cos(r30)), 0.0, 1e-8 * 500e6);
+    EXPECT_LT(mohr_coulomb_yield(s, cr, p.sin_phi, p.cos_phi), -0.1 * std::abs(s[2]));
+    // without a residual angle the same loading ends on the 40 deg envelope, bit for bit the
+    // model without the option (friction_at returns the stored sin and cos)
+    const RockParameters q = mc(0, 1e-3);
+    MaterialState        sq;
+    Tensor3              tq = Tensor3::Zero();
+    for (int k = 0; k < 60; ++k)
+      {
+        const auto up = update_mohr_coulomb(tq, de, sq, q);
+        tq            = up.stress;
+        sq            = up.state;
+      }
+    EXPECT_NEAR(mohr_coulomb_yield(principal(tq), cr, q.sin_phi, q.cos_phi), 0.0, 1e-8 * 500e6);
+    EXPECT_EQ(friction_at(0.7, q).sin_phi, q.sin_phi);
+    EXPECT_EQ(friction_at(0.0, p).cos_phi, p.cos_phi);
   }
 
   TEST(SphHoekBrown, ReturnLandsOnEnvelope)

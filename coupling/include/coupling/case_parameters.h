@@ -24,6 +24,7 @@ namespace coupling
     double bts = 0.0;                  ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
     double softening_strain = 2e-3;    ///< [-] plastic strain over which strength falls to residual
     double residual_fraction = 0.1;    ///< [-] residual strength / peak strength
+    double residual_friction_angle = -1; ///< [deg] friction angle of crushed rock (damage 1); < 0: none
     double strength_scatter = 0.0;     ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
     int scatter_seed = 1;              ///< seed of the strength scatter (same seed, same rock)
   };

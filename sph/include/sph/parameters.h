@@ -59,5 +59,9 @@ namespace sph
     double    hb_a              = 0.5;     ///< Hoek-Brown a [-]
     double    softening_strain  = 0.0;     ///< equivalent plastic strain to residual [-]; 0 = none
     double    residual_fraction = 0.1;     ///< residual strength / peak strength [-]
+    /// Mohr-Coulomb friction angle of the fully damaged (crushed) rock phi_r [rad]: the angle
+    /// goes linearly from phi to phi_r with the damage, as the cohesion goes to its residual.
+    /// < 0: phi throughout (no friction softening).
+    double    residual_friction_angle = -1.0;
   };
 } // namespace sph

@@ -30,6 +30,8 @@ namespace sph::rock
     double hb_sigma_ci = 0, hb_mb = 1, hb_s = 1, hb_a = 0.5; ///< Hoek-Brown [Pa, -, -, -]
     double softening_strain = 0;   ///< kappa at which the strength is residual [-]; 0: no softening
     double residual_fraction = 1;  ///< residual / peak strength [-]
+    double phi = 0;                ///< friction angle [rad]
+    double phi_residual = -1;      ///< friction angle at damage 1 [rad]; < 0: phi throughout
   };
 
   /// RockParameters from the user-facing MaterialParameters.
@@ -55,6 +57,8 @@ namespace sph::rock
                                                     m.hb_s * m.hb_sigma_ci / m.hb_mb;
     p.softening_strain  = m.softening_strain;
     p.residual_fraction = m.residual_fraction;
+    p.phi               = m.friction_angle;
+    p.phi_residual      = m.residual_friction_angle;
     return p;
   }
 
@@ -75,6 +79,20 @@ namespace sph::rock
   inline double strength_factor(const double damage, const RockParameters &p)
   {
     return 1.0 - (1.0 - p.residual_fraction) * damage;
+  }
+
+  /// sin and cos of the Mohr-Coulomb friction angle at damage d: phi + (phi_r - phi) d with a
+  /// residual angle phi_r, phi (the stored values, bit for bit) without one or at d = 0.
+  struct Friction
+  {
+    double sin_phi, cos_phi;
+  };
+  inline Friction friction_at(const double damage, const RockParameters &p)
+  {
+    if (p.phi_residual < 0 || damage <= 0)
+      return {p.sin_phi, p.cos_phi};
+    const double phi = p.phi + (p.phi_residual - p.phi) * damage;
+    return {std::sin(phi), std::cos(phi)};
   }
 
   /// Elastic predictor: stress_old + C : de (isotropic).
@@ -226,12 +244,13 @@ namespace sph::rock
     return {elastic_trial(stress_old, strain_increment, prm), old_state};
   }
 
-  /// Implementation of the plastic models: `surface(s, factor)` returns s onto the yield surface
-  /// at strength factor `factor` (the particle's scatter factor old_state.strength times the
-  /// softening factor) and says whether it was plastic. The softening is
-  /// implicit: the strength is that of the updated plastic strain, by fixed-point iteration.
-  /// `surely_elastic(trial, factor)` is a cheaper sufficient test for an admissible trial stress
-  /// (no principal stresses needed); when it holds the step is elastic, as `surface` would find.
+  /// Implementation of the plastic models: `surface(s, strength, damage)` returns s onto the
+  /// yield surface of a particle with scatter factor `strength` (old_state.strength) at damage
+  /// `damage` (softened strength, and friction angle where it softens) and says whether it was
+  /// plastic. The softening is implicit: the strength is that of the updated plastic strain, by
+  /// fixed-point iteration. `surely_elastic(trial, strength, damage)` is a cheaper sufficient
+  /// test for an admissible trial stress (no principal stresses needed); when it holds the step
+  /// is elastic, as `surface` would find.
   template <typename Surface, typename SurelyElastic>
   inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
                                      const MaterialState &old_state, const RockParameters &prm,
@@ -241,34 +260,80 @@ namespace sph::rock
     Principal     s_trial;
     Tensor3       Q;
     {
-      const double factor = old_state.strength * strength_factor(old_state.damage, prm);
-      if (surely_elastic(trial, factor))
+      if (surely_elastic(trial, old_state.strength, old_state.damage))
         return {trial, old_state};
       // cheap admissibility check next
-      Principal s = s_trial;
       Eigen::SelfAdjointEigenSolver<Tensor3> eig;
       eig.computeDirect(trial, Eigen::EigenvaluesOnly);
-      s = Principal(eig.eigenvalues()[2], eig.eigenvalues()[1], eig.eigenvalues()[0]);
+      const Principal s(eig.eigenvalues()[2], eig.eigenvalues()[1], eig.eigenvalues()[0]);
       Principal    r      = s;
       const double scale  = 1e-9 * (s.cwiseAbs().maxCoeff() + prm.cohesion + prm.hb_sigma_ci);
-      if (!surface(r, factor) || (r - s).cwiseAbs().maxCoeff() < scale)
+      if (!surface(r, old_state.strength, old_state.damage) ||
+          (r - s).cwiseAbs().maxCoeff() < scale)
         return {trial, old_state};
     }
     principal_decomposition(trial, s_trial, Q);
-    Principal s      = s_trial;
-    double    dkappa = 0;
-    for (int it = 0; it < 50; ++it)
+    // the equivalent plastic strain of the return at the damage of a plastic strain increment
+    // dk (s: the returned stress); the increment solves plastic_strain_of(dk) = dk
+    const auto plastic_strain_of = [&](const double dk, Principal &s) {
+      const double damage =
+        std::max(old_state.damage, damage_of(old_state.plastic_strain + dk, prm));
+      s = s_trial;
+      surface(s, old_state.strength, damage);
+      const Principal ep = principal_compliance_times(s_trial - s, prm);
+      return std::sqrt(2.0 / 3.0 * ep.squaredNorm());
+    };
+    const auto close = [](const double a, const double b) {
+      return std::abs(a - b) <= 1e-13 * std::abs(a) + 1e-300;
+    };
+    Principal s;
+    double    dkappa    = 0;
+    bool      converged = false;
+    for (int it = 0; it < 50 && !converged; ++it)
       {
-        const double damage = std::max(old_state.damage,
-                                       damage_of(old_state.plastic_strain + dkappa, prm));
-        s                   = s_trial;
-        surface(s, old_state.strength * strength_factor(damage, prm));
-        const Principal ep = principal_compliance_times(s_trial - s, prm);
-        const double    dk = std::sqrt(2.0 / 3.0 * ep.squaredNorm());
-        const bool      converged = std::abs(dk - dkappa) <= 1e-13 * dk + 1e-300;
-        dkappa                    = dk;
-        if (prm.softening_strain <= 0 || converged)
-          break;
+        const double dk = plastic_strain_of(dkappa, s);
+        converged       = prm.softening_strain <= 0 || close(dk, dkappa);
+        dkappa          = dk;
+      }
+    if (!converged)
+      {
+        // The fixed point creeps up on the root from below (the weaker the surface, the larger
+        // the return) and can be slow where the strength falls steeply, as with a softening
+        // friction angle: regula falsi (Illinois) between that lower bound, g = k(dk) - dk >= 0,
+        // and the return at full damage, g <= 0.
+        Principal    t;
+        const auto   g  = [&](const double dk) { return plastic_strain_of(dk, t) - dk; };
+        double       a  = dkappa, fa = g(a);
+        double       b  = plastic_strain_of(prm.softening_strain + 1.0, t), fb = g(b);
+        if (fa >= 0 && fb <= 0 && b > a)
+          {
+            int side = 0;
+            for (int it = 0; it < 100 && !close(a, b); ++it)
+              {
+                const double c  = fa - fb > 0 ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
+                const double fc = g(c);
+                if (fc > 0)
+                  {
+                    a = c, fa = fc;
+                    if (side == 1)
+                      fb *= 0.5;
+                    side = 1;
+                  }
+                else
+                  {
+                    b = c, fb = fc;
+                    if (side == -1)
+                      fa *= 0.5;
+                    side = -1;
+                  }
+                if (std::abs(fc) <= 1e-13 * c)
+                  {
+                    a = b = c;
+                    break;
+                  }
+              }
+            dkappa = plastic_strain_of(0.5 * (a + b), s);
+          }
       }
     StressUpdate out;
     out.state                 = old_state;
@@ -285,16 +350,18 @@ namespace sph::rock
                                           const MaterialState &old_state,
                                           const RockParameters &prm)
   {
-    const auto surface = [&prm](Principal &s, const double factor) {
-      const double c  = prm.cohesion * factor;
-      bool         pl = false;
+    const auto surface = [&prm](Principal &s, const double strength, const double damage) {
+      const double   factor = strength * strength_factor(damage, prm);
+      const double   c      = prm.cohesion * factor;
+      const Friction fr     = friction_at(damage, prm);
+      bool           pl     = false;
       if (prm.tensile_strength <= 0)
-        return return_mohr_coulomb(s, c, prm.sin_phi, prm.cos_phi, prm.sin_psi, prm);
+        return return_mohr_coulomb(s, c, fr.sin_phi, fr.cos_phi, prm.sin_psi, prm);
       const double st = prm.tensile_strength * factor;
       // alternate the two returns until both hold (converges in a few sweeps)
       for (int sweep = 0; sweep < 30; ++sweep)
         {
-          const bool a = return_mohr_coulomb(s, c, prm.sin_phi, prm.cos_phi, prm.sin_psi, prm);
+          const bool a = return_mohr_coulomb(s, c, fr.sin_phi, fr.cos_phi, prm.sin_psi, prm);
           const bool b = return_rankine(s, st, prm);
           pl           = pl || a || b;
           if (!b)
@@ -308,8 +375,11 @@ namespace sph::rock
     //   f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
     //     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
     // Both below the surfaces by a margin far above round-off: the trial is admissible.
-    const auto surely_elastic = [&prm](const Tensor3 &t, const double factor) {
-      const double m  = t.trace() / 3.0;
+    const auto surely_elastic = [&prm](const Tensor3 &t, const double strength,
+                                       const double damage) {
+      const double   factor = strength * strength_factor(damage, prm);
+      const Friction fr     = friction_at(damage, prm);
+      const double   m      = t.trace() / 3.0;
       double       dd = 0; // dev : dev = 2 J2
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
@@ -320,9 +390,9 @@ namespace sph::rock
       const double q      = std::sqrt(0.5 * dd);
       const double c      = prm.cohesion * factor;
       const double margin = 1e-9 * (std::abs(m) + q + c);
-      const double f_max  = 2.0 * m * prm.sin_phi +
-                           q * (2.0 + std::abs(prm.sin_phi) / std::sqrt(3.0)) -
-                           2.0 * c * prm.cos_phi;
+      const double f_max  = 2.0 * m * fr.sin_phi +
+                           q * (2.0 + std::abs(fr.sin_phi) / std::sqrt(3.0)) -
+                           2.0 * c * fr.cos_phi;
       if (!(f_max < -margin))
         return false;
       return prm.tensile_strength <= 0 ||
@@ -337,7 +407,8 @@ namespace sph::rock
   inline StressUpdate update_hoek_brown(const Tensor3 &stress_old, const Tensor3 &strain_increment,
                                         const MaterialState &old_state, const RockParameters &prm)
   {
-    const auto surface = [&prm](Principal &s, const double factor) {
+    const auto surface = [&prm](Principal &s, const double strength, const double damage) {
+      const double factor = strength * strength_factor(damage, prm);
       const double sci = prm.hb_sigma_ci, mb = prm.hb_mb, a = prm.hb_a;
       const double ss  = prm.hb_s * factor;
       const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
@@ -373,7 +444,7 @@ namespace sph::rock
       return pl;
     };
     // no cheap test: the principal stresses decide
-    const auto surely_elastic = [](const Tensor3 &, double) { return false; };
+    const auto surely_elastic = [](const Tensor3 &, double, double) { return false; };
     return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
   }
 
