@@ -354,8 +354,18 @@ namespace coupling
         if (result)
           *result = summary;
         if (!quiet)
-          std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
-                       summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
+        {
+          // the laboratory tests report a strength; a cutter or indenter its forces
+          const auto mean_normal = find_extra(summary, "mean_normal_force_kN");
+          const auto peak_normal = find_extra(summary, "peak_normal_force_kN");
+          if (mean_normal && peak_normal)
+            std::fprintf(stderr, "cosim: %s: normal force mean %.1f kN, peak %.1f kN, %zu steps, %.1f s -> %s\n",
+                         summary.test.c_str(), *mean_normal, *peak_normal, summary.n_steps, summary.wall_seconds,
+                         target.c_str());
+          else
+            std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
+                         summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
+        }
         return 0;
       }
       catch (const InstabilityError &e)
