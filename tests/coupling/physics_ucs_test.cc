@@ -37,6 +37,13 @@ namespace
     p.loading.end_strain  = 0.006;
     return p;
   }
+
+  /// The closed-form strength 2c cos(phi)/(1 - sin(phi)) of mohr_coulomb_ucs() (282.2 MPa) [Pa].
+  double closed_form_ucs()
+  {
+    const double phi = 63.68 * M_PI / 180;
+    return 2 * 32.99e6 * std::cos(phi) / (1 - std::sin(phi));
+  }
 } // namespace
 
 TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
@@ -68,12 +75,10 @@ TEST(CoupledUcs, MohrCoulombPeakIsTheClosedFormStrength)
   // the peak must be 2c cos(phi)/(1 - sin(phi)) = 282.2 MPa. 1.5 %: the run at 2.5 mm gives
   // +0.47 % and at 5 mm +0.58 % (dynamic overshoot of the loading and the viscous stress); without
   // the loaded-face correction the end layers yield first and the peak is 27 % low (205.7 MPa).
-  const CaseParameters p  = mohr_coulomb_ucs();
-  const double phi        = 63.68 * M_PI / 180;
-  const double ucs        = 2 * 32.99e6 * std::cos(phi) / (1 - std::sin(phi));
+  const CaseParameters p = mohr_coulomb_ucs();
   Keep rows;
   const Summary s = run_case(p, rows);
-  EXPECT_NEAR(s.peak_stress / ucs, 1.0, 0.015);
+  EXPECT_NEAR(s.peak_stress / closed_form_ucs(), 1.0, 0.015);
   // the load falls after the peak (softening): the run ends on the post-peak drop
   EXPECT_EQ(s.stop_reason, "post-peak drop");
   // 0.1: as in the elastic test above, twice the driver's default quasi-static limit
@@ -88,11 +93,9 @@ TEST(CoupledUcs, ASpacingThatDoesNotDivideTheLengthKeepsTheStrength)
   // at 105 MPa). The contact radius is now half the layer distance: the same 1.5 % as above.
   CaseParameters p = mohr_coulomb_ucs();
   p.sph.spacing    = 4.4e-3;
-  const double phi = 63.68 * M_PI / 180;
-  const double ucs = 2 * 32.99e6 * std::cos(phi) / (1 - std::sin(phi));
   Keep rows;
   const Summary s = run_case(p, rows);
-  EXPECT_NEAR(s.peak_stress / ucs, 1.0, 0.015);
+  EXPECT_NEAR(s.peak_stress / closed_form_ucs(), 1.0, 0.015);
   EXPECT_EQ(s.stop_reason, "post-peak drop");
 }
 
