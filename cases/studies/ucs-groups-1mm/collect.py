@@ -12,6 +12,17 @@ import os
 import shutil
 import sys
 
+# M1 at 1 mm was run in session 3 (cases/ucs/README.md: `/usr/bin/time -v cosim run
+# cases/ucs/ucs.prm --set "SPH/Particle spacing=0.001"`, two idle cores); its run folder was not
+# kept, so its row is the summary recorded then, without a curve.
+RECORDED = {"M1": {"test": "UCS", "peak_stress_MPa": 282.83, "youngs_modulus_GPa": 97.37,
+                   "platen_modulus_GPa": float("nan"), "poissons_ratio": 0.281,
+                   "strain_at_peak": float("nan"), "peak_force_kN": float("nan"),
+                   "n_particles": 197600, "n_steps": 4881, "wall_seconds": 727.0,
+                   "max_kinetic_to_internal_energy": float("nan"),
+                   "max_force_imbalance": float("nan"), "quasi_static": True,
+                   "stop_reason": "post-peak drop"}}
+
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.abspath(os.path.join(here, "..", "..", ".."))
 
@@ -39,11 +50,16 @@ def main(argv):
     for k in range(1, 11):
         group = "M%d" % k
         run = argv[1].format(group=group)
-        with open(os.path.join(run, "summary.json")) as f:
-            s = json.load(f)
         folder = "%02d-Group=%s" % (k, group)
-        os.makedirs(os.path.join(here, folder), exist_ok=True)
-        shutil.copy(os.path.join(run, "history.csv"), os.path.join(here, folder, "history.csv"))
+        status = "ok"
+        if os.path.exists(os.path.join(run, "summary.json")):
+            with open(os.path.join(run, "summary.json")) as f:
+                s = json.load(f)
+            os.makedirs(os.path.join(here, folder), exist_ok=True)
+            shutil.copy(os.path.join(run, "history.csv"), os.path.join(here, folder, "history.csv"))
+        else:
+            s = RECORDED[group]  # no curve: plot_study.py draws the runs whose history.csv is here
+            print("%s: the recorded session-3 summary (no run folder)" % group)
         err = 100.0 * (s["peak_stress_MPa"] / reference[group] - 1.0)
         errors.append(err)
         rows.append([folder, group, s["test"], "%.6g" % s["peak_stress_MPa"], reference[group],
@@ -53,7 +69,7 @@ def main(argv):
                      s["n_steps"], "%.1f" % s["wall_seconds"],
                      "%.3g" % s["max_kinetic_to_internal_energy"],
                      "%.3g" % s["max_force_imbalance"], str(s["quasi_static"]).lower(),
-                     s["stop_reason"], "ok"])
+                     s["stop_reason"], status])
     with open(os.path.join(here, "study.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(columns)
