@@ -35,14 +35,13 @@ namespace
   /// sharp tip at 0.9 goes unstable at 5.98 mm (exit status 3); the crushed-rock friction is
   /// restarted by the linear-cutting test below.
   const std::vector<std::string> small_indentation = {
-    "Rock/Residual friction angle=",
     "Cutter/Tip radius=0",      "SPH/TSSFAC=0.9",
     "Cutter/Shape=cone",        "SPH/Particle spacing=0.003",
     "Cutter/Penetration=0.006", "Cutter/Speed=4",
     "Cutter/Block length=0.03", "Cutter/Block width=0.03",
     "Cutter/Block height=0.03", "SPH/Threads=2",
     "Output/History rows=60",   "Output/Snapshots=3",
-    "Output/Progress=false"};
+    "Output/Progress=false",    "Rock/Residual friction angle="};
 
   /// A 60 mm disc, 6 mm deep, across a 60 x 30 x 30 mm block at 3 mm spacing: rock fails and
   /// leaves the contact as chip within the first 3,600 steps, so the chip flags and the contact
