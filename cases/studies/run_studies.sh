@@ -32,8 +32,8 @@ run() {
     bts-groups)   study bts-groups $bts --groups all ;;
     bts-rate)     study bts-rate $bts --key "Loading/Strain rate" --values 0.25,0.5,1,2,5,10,20 ;;
     # the 25 mm disc allows at most 2.5 mm (10 particles through the thickness): Table 1's 50 mm
-    # discs. 4 and 3 mm do not divide 50 mm and start with the platens inside the lattice (see
-    # README): 50/12 and 50/15 mm stand in for them.
+    # discs. 50/12 and 50/15 mm stand in for 4 and 3 mm, which do not divide 50 mm (they started
+    # with the platens inside the lattice before session 6; bts-spacing-paper has them now).
     bts-spacing)  study bts-spacing $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \
                     --values 0.005,0.0041667,0.0033333,0.0025,0.002 ;;
     bts-spacing-paper) study bts-spacing-paper $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \

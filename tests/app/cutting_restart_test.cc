@@ -60,29 +60,6 @@ namespace
     return coupling::read_case_file(file, o).parameters;
   }
 
-  struct Recorder : coupling::RunObserver
-  {
-    std::vector<coupling::HistoryRow> rows;
-    coupling::StateArrays last_checkpoint;
-    std::size_t checkpoint_step = 0, n_checkpoints = 0;
-    void history(const coupling::HistoryRow &r) override { rows.push_back(r); }
-    void checkpoint(std::size_t step, const coupling::StateArrays &state) override
-    {
-      last_checkpoint = state;
-      checkpoint_step = step;
-      ++n_checkpoints;
-    }
-  };
-
-
-  double max_abs(const coupling::StateArrays &s, const std::string &name)
-  {
-    double m = 0;
-    for (const double v : s.at(name))
-      m = std::max(m, std::abs(v));
-    return m;
-  }
-
   /// Runs `file` with `o` to step `end` (Output/Stop after steps), then stopped after a
   /// pseudo-random step in [lo, end - two history rows], through checkpoint.h5, and restarted to
   /// `end`: the histories must be identical. Returns the checkpoint.

@@ -41,28 +41,17 @@ namespace
     return coupling::read_case_file(ucs_case, o).parameters;
   }
 
-  /// Keeps what the run reports, in memory.
-  struct Recorder : coupling::RunObserver
+  /// Keeps what the run reports, in memory, and where a failed run's last good state was.
+  struct RunRecorder : cosim_test::Recorder
   {
-    std::vector<coupling::HistoryRow> rows;
-    coupling::StateArrays last_checkpoint;
-    std::size_t checkpoint_step = 0, n_checkpoints = 0;
     long good_step             = -1;
     std::size_t good_particles = 0;
-    void history(const coupling::HistoryRow &r) override { rows.push_back(r); }
-    void checkpoint(std::size_t step, const coupling::StateArrays &state) override
-    {
-      last_checkpoint = state;
-      checkpoint_step = step;
-      ++n_checkpoints;
-    }
     void last_good_state(std::size_t step, double, const coupling::ParticleSnapshot &p) override
     {
       good_step      = static_cast<long>(step);
       good_particles = p.n;
     }
   };
-
 
   /// The reference run, once per test program.
   struct Reference
@@ -73,7 +62,7 @@ namespace
   const Reference &reference_run()
   {
     static const Reference ref = [] {
-      Recorder r;
+      RunRecorder r;
       Reference out;
       out.n_steps = coupling::run_case(small_case(), r).n_steps;
       out.rows    = r.rows;
@@ -89,7 +78,7 @@ namespace
 
 TEST(Determinism, TwoRunsGiveIdenticalHistories)
 {
-  Recorder second;
+  RunRecorder second;
   const coupling::Summary s = coupling::run_case(small_case(), second);
   ASSERT_GT(s.n_steps, 100u) << "the case must run long enough to test anything";
   ASSERT_GT(second.rows.size(), 20u);
@@ -107,7 +96,7 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   const long stop_at = std::uniform_int_distribution<long>(5, long(n_steps) - 5)(random);
   SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(n_steps));
 
-  Recorder first;
+  RunRecorder first;
   EXPECT_THROW(
     coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), first),
     coupling::RunInterrupted);
@@ -127,7 +116,7 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
     EXPECT_EQ(std::memcmp(state.at(name).data(), values.data(), values.size() * sizeof(double)), 0)
       << name;
   }
-  Recorder second;
+  RunRecorder second;
   coupling::run_case(small_case({"Output/Stop after steps=" + std::to_string(stop_at)}), second,
                      &state);
   EXPECT_TRUE(identical(reference, second.rows));
@@ -139,7 +128,7 @@ TEST(Restart, ElasticPlatensWithFrictionContinueBitwise)
 {
   const std::vector<std::string> extra = {"Platens/Model=elastic",
                                           "Platens/Friction coefficient=0.3"};
-  Recorder whole;
+  RunRecorder whole;
   const std::size_t n_steps = coupling::run_case(small_case(extra), whole).n_steps;
   ASSERT_GT(n_steps, 60u);
   const unsigned seed = coupling::test::test_seed(20261124u);
@@ -149,26 +138,23 @@ TEST(Restart, ElasticPlatensWithFrictionContinueBitwise)
   SCOPED_TRACE("stopped after step " + std::to_string(stop_at) + " of " + std::to_string(n_steps));
   auto with_stop = extra;
   with_stop.push_back("Output/Stop after steps=" + std::to_string(stop_at));
-  Recorder first;
+  RunRecorder first;
   EXPECT_THROW(coupling::run_case(small_case(with_stop), first), coupling::RunInterrupted);
   // the state holds what this test is about: a deformed platen and loaded stick springs
   auto max_abs = [&](const std::string &name) {
-    double m = 0;
-    for (const double v : first.last_checkpoint.at(name))
-      m = std::max(m, std::abs(v));
-    return m;
+    return cosim_test::max_abs(first.last_checkpoint, name);
   };
   EXPECT_GT(max_abs("platen_top.u"), 0.0);
   EXPECT_GT(max_abs("contact_top.tangential_force") + max_abs("contact_bottom.tangential_force"),
             0.0);
-  Recorder second;
+  RunRecorder second;
   coupling::run_case(small_case(with_stop), second, &first.last_checkpoint);
   EXPECT_TRUE(identical(whole.rows, second.rows));
 }
 
 TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
 {
-  Recorder r;
+  RunRecorder r;
   coupling::run_case(small_case({"Output/Checkpoint interval=50"}), r);
   EXPECT_GE(r.n_checkpoints, 2u);
   EXPECT_EQ(r.checkpoint_step % 50, 0u);
@@ -179,7 +165,7 @@ TEST(Restart, TimedCheckpointsAreWrittenWhenTheirIntervalHasPassed)
 {
   // an interval far below one step's wall time: a checkpoint after every step, the last one the
   // stop's
-  Recorder r;
+  RunRecorder r;
   EXPECT_THROW(coupling::run_case(
                  small_case({"Output/Checkpoint minutes=1e-9", "Output/Stop after steps=12"}), r),
                coupling::RunInterrupted);
@@ -189,10 +175,10 @@ TEST(Restart, TimedCheckpointsAreWrittenWhenTheirIntervalHasPassed)
 
 TEST(Restart, CheckpointOfAnotherCaseIsRefused)
 {
-  Recorder first;
+  RunRecorder first;
   EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=10"}), first),
                coupling::RunInterrupted);
-  Recorder second;
+  RunRecorder second;
   try
   {
     coupling::run_case(small_case({"SPH/Particle spacing=0.0045"}), second, &first.last_checkpoint);
@@ -208,7 +194,7 @@ TEST(Restart, CheckpointOfAnotherCaseIsRefused)
 // state, say what and where, and hand over the state of the step before.
 TEST(Instability, TssfacFiveIsCaughtWithinOneStepWithItsLastGoodState)
 {
-  Recorder r;
+  RunRecorder r;
   try
   {
     coupling::run_case(small_case({"SPH/TSSFAC=5"}), r);

@@ -152,13 +152,17 @@ namespace
           }
       }
     ASSERT_NEAR(state.damage, 1.0, 1e-12) << "the loading must reach the residual state";
-    // crushed: on the 30 deg envelope of the residual cohesion, well inside the 40 deg one
+    // crushed: on the 30 deg envelope of the residual cohesion, and inside the 40 deg one by
+    // f40 - f30 = (sin 40 - sin 30)(s0 + s2) - 2 c_r (cos 40 - cos 30), negative here
     const Principal s  = principal(stress);
-    const double    cr = 0.2 * p.cohesion, r30 = 30.0 * M_PI / 180;
+    const double    cr = 0.2 * p.cohesion, r30 = 30.0 * M_PI / 180, r40 = 40.0 * M_PI / 180;
     EXPECT_NEAR(mohr_coulomb_yield(s, cr, std::sin(r30), std::cos(r30)), 0.0, 1e-8 * 500e6);
-    EXPECT_LT(mohr_coulomb_yield(s, cr, p.sin_phi, p.cos_phi), -0.1 * std::abs(s[2]));
-    // without a residual angle the same loading ends on the 40 deg envelope, bit for bit the
-    // model without the option (friction_at returns the stored sin and cos)
+    const double inside = (std::sin(r40) - std::sin(r30)) * (s[0] + s[2]) -
+                          2 * cr * (std::cos(r40) - std::cos(r30));
+    EXPECT_LT(inside, 0.0);
+    EXPECT_NEAR(mohr_coulomb_yield(s, cr, p.sin_phi, p.cos_phi), inside, 1e-8 * 500e6);
+    // without a residual angle the same loading ends on the 40 deg envelope of the residual
+    // cohesion (friction_at returns the stored sin and cos: no change for the other models)
     const RockParameters q = mc(0, 1e-3);
     MaterialState        sq;
     Tensor3              tq = Tensor3::Zero();
