@@ -4,7 +4,8 @@
 example's 0.05, whose tip amplitude exceeds the plate length and leaves the small-deflection
 theory both codes are checked against). Serial (no --openmp), no output files.
 
-Usage: pysph_plate.py STEPS [VF]
+Usage: pysph_plate.py STEPS [VF] [DX]
+DX (default the example's 0.002 m) refines the plate; h stays 1.3 DX as in the example.
 Prints particles, steps, wall and CPU seconds of the time loop only (set-up and Cython
 compilation excluded), particle-steps/s, and the period from the tip's first downward zero
 crossing (t = T/2 for y = A sin(omega t)) against thin-plate theory. PySPH's EPEC integrator
@@ -22,6 +23,8 @@ class TimedPlate(OscillatingPlate):
     def initialize(self):
         super().initialize()
         self.Vf = self.vf_override
+        self.dx_plate = self.dx_override
+        self.h = 1.3 * self.dx_plate
         self.trace = []
         self.cpu0 = self.wall0 = None
 
@@ -36,6 +39,7 @@ class TimedPlate(OscillatingPlate):
 def main():
     steps = int(sys.argv[1]) if len(sys.argv) > 1 else 15000
     TimedPlate.vf_override = float(sys.argv[2]) if len(sys.argv) > 2 else 0.01
+    TimedPlate.dx_override = float(sys.argv[3]) if len(sys.argv) > 3 else 0.002
     app = TimedPlate()
     dt = 1e-5
     out = tempfile.mkdtemp(prefix="pysph_plate_")
@@ -58,6 +62,7 @@ def main():
     print("particles %d" % n)
     print("steps %d" % app.solver.count)
     print("dt %g" % app.solver.dt)
+    print("dx %g" % app.dx_plate)
     print("wall_s %.3f" % wall)
     print("cpu_s %.3f" % cpu)
     print("particle_steps_per_s %.4g" % (n * n_timed / wall))

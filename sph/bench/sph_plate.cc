@@ -1,11 +1,12 @@
 // sph_plate: our solver on PySPH's solid_mech/oscillating_plate example (Gray, Monaghan & Swift
-// 2001), particle for particle: the same plate and wall positions (dx = 2 mm, plate 0.2 m x 0.02 m
+// 2001), particle for particle: the same plate and wall positions (dx = 2 mm or the dx given, plate
+// 0.2 m x 0.02 m
 // plus L/4 inside a 3-layer wall), the same first-mode velocity profile, the same fixed dt and
 // number of steps. Differences, by design: our wall and the plate part inside it are clamped
 // (velocity 0) where PySPH's wall holds the plate through the SPH sums; FORM 8 (TL + correction)
 // instead of PySPH's updated-Lagrangian scheme with XSPH and artificial stress. Not a test; run by
 // tools/bench --pysph.
-// Usage: sph_plate [steps = 15000] [dt = 1e-5] [vf = 0.01] [threads = 1]
+// Usage: sph_plate [steps = 15000] [dt = 1e-5] [vf = 0.01] [threads = 1] [dx = 0.002]
 // Prints particles, steps, wall and CPU seconds, particle-steps/s and the period measured from
 // the tip's first downward zero crossing (t = T/2 for y = A sin(omega t)) against thin-plate
 // theory.
@@ -45,9 +46,15 @@ int main(int argc, char **argv)
   const double dt   = argc > 2 ? std::atof(argv[2]) : 1e-5;
   const double vf   = argc > 3 ? std::atof(argv[3]) : 0.01;
   const int threads = argc > 4 ? std::atoi(argv[4]) : 1;
+  const double dx   = argc > 5 ? std::atof(argv[5]) : 0.002;
+  if (!(dx > 0 && dx <= 0.01))
+  {
+    std::fprintf(stderr, "sph_plate: dx must be in (0, 0.01] m\n");
+    return 2;
+  }
 
   // PySPH's geometry (oscillating_plate.py: create_plate, create_wall)
-  const double L = 0.2, H = 0.02, dx = 0.002, inside = L / 4;
+  const double L = 0.2, H = 0.02, inside = L / 4;
   const int layers = 3;
   std::vector<Vector<2>> x;
   std::vector<bool> wall;
@@ -57,7 +64,7 @@ int main(int argc, char **argv)
       x.emplace_back(xp, yp);
       wall.push_back(false);
     }
-  const double y_min = -H / 2, y_max = -H / 2 + 10 * dx;
+  const double y_min = -H / 2, y_max = mgrid(-H / 2, H / 2 + dx / 2, dx).back();
   for (const double xw : mgrid(-inside, dx / 2, dx)) // lower
     for (const double yw : mgrid(y_min - dx, y_min - dx - (layers - 1) * dx - dx / 2, -dx))
     {
@@ -144,8 +151,8 @@ int main(int argc, char **argv)
   const double wall_s =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - w_start).count();
   const double ps = static_cast<double>(body.n_particles()) * n_steps;
-  std::printf("particles %u\nsteps %d\ndt %g\nwall_s %.3f\ncpu_s %.3f\n", body.n_particles(),
-              n_steps, dt, wall_s, cpu);
+  std::printf("particles %u\nsteps %d\ndt %g\ndx %g\nwall_s %.3f\ncpu_s %.3f\n", body.n_particles(),
+              n_steps, dt, dx, wall_s, cpu);
   std::printf("particle_steps_per_s %.4g\nparticle_steps_per_cpu_s %.4g\n", ps / wall_s, ps / cpu);
   std::printf("analytic_period_s %.5f\nmeasured_period_s %.5f\n", period,
               t_half > 0 ? 2 * t_half : -1.0);

@@ -2,6 +2,7 @@
 #include <sph/kernels.h>
 
 #include "pair_kernel.h"
+#include "pair_kernel_mixed.h"
 
 #include <omp.h>
 
@@ -181,7 +182,18 @@ namespace sph
     volume_next_.assign(n, 0.0);
     area0_.assign(n, Vector<dim>::Zero());
     simd_ = dim == 3 && prm_.vectorised && pair_kernel::avx2_available();
-    record_.assign(simd_ ? n * pair_kernel::record_size : 0, 0.0);
+    mixed_ = simd_ && prm_.single_precision && prm_.spacing >= 1e-4;
+    record_.assign(simd_ && !mixed_ ? n * pair_kernel::record_size : 0, 0.0);
+    frecord_.assign(mixed_ ? n * pair_kernel::mixed::float_size : 0, 0.0f);
+    {
+      Vector<dim> lo = p_.x0[0], hi = p_.x0[0];
+      for (const Vector<dim> &X : p_.x0)
+        {
+          lo = lo.cwiseMin(X);
+          hi = hi.cwiseMax(X);
+        }
+      centre0_ = 0.5 * (lo + hi);
+    }
     position_volume_.assign(simd_ ? 4 * n : 0, 0.0);
 
     build_pairs();
@@ -232,6 +244,17 @@ namespace sph
             hg_factor_[p] = X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
           }
       }
+    constexpr int pair_size = pair_kernel::mixed::pair_size;
+    pair_float_.resize(mixed_ ? pair_size * n_p : 0);
+    if (mixed_)
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+      for (long p = 0; p < static_cast<long>(n_p); ++p)
+        {
+          float *r = &pair_float_[pair_size * static_cast<std::size_t>(p)];
+          for (int d = 0; d < dim; ++d)
+            r[d] = static_cast<float>(grad_w_[p][d]);
+          r[pair_size - 1] = tl ? static_cast<float>(hg_factor_[p]) : 0.0f;
+        }
     partition_pairs();
   }
 
@@ -706,6 +729,15 @@ namespace sph
     args.beta      = beta;
     args.c         = c;
     args.av        = av;
+    const bool          mixed = mixed_;
+    pair_kernel::mixed::Args margs;
+    margs.record    = frecord_.data();
+    margs.pair      = pair_float_.data();
+    margs.hourglass = hg > 0;
+    margs.alpha     = alpha;
+    margs.beta      = beta;
+    margs.c         = c;
+    margs.av        = av;
 #pragma omp parallel num_threads(n_threads_)
     {
       const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
@@ -720,7 +752,11 @@ namespace sph
       for (int t = t0; t < n_threads_; t += nt)
         for_cross_slices(t, [&](const int s, const std::size_t kb, const std::size_t ke) {
           double *share = cross_share_[s].data() + share_size * kb;
-          if (simd)
+          if (mixed)
+            pair_kernel::mixed::list_forces(margs, cross_[s].data() + kb,
+                                            static_cast<int>(ke - kb), pairs_.first.data(), second,
+                                            share);
+          else if (simd)
             pair_kernel::list_forces(args, cross_[s].data() + kb, static_cast<int>(ke - kb),
                                      pairs_.first.data(), second, share);
           else
@@ -759,8 +795,13 @@ namespace sph
                   // i's pairs four at a time: their sum on i in lanes (a fixed order), the
                   // second particles' shares subtracted pair by pair (each j in ascending i)
                   double sum[pair_kernel::out_size];
-                  pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1], second,
-                                               e, reinterpret_cast<double *>(f_int), sum);
+                  if (mixed)
+                    pair_kernel::mixed::particle_forces(margs, i, pair_begin[i],
+                                                        pair_begin[i + 1], second, e,
+                                                        reinterpret_cast<double *>(f_int), sum);
+                  else
+                    pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1],
+                                                 second, e, reinterpret_cast<double *>(f_int), sum);
                   for (int d = 0; d < dim; ++d)
                     fi[d] += sum[d];
                   sum_power += sum[dim];
@@ -830,11 +871,42 @@ namespace sph
         namespace f          = pair_kernel::field;
         const bool    tl     = total_lagrangian();
         const double *volume = (tl ? p_.volume0 : p_.volume).data();
+        if (mixed_)
+          {
+            namespace m = pair_kernel::mixed::field;
+            for (std::int32_t i = begin; i < end; ++i)
+              {
+                float *r = &frecord_[pair_kernel::mixed::float_size * static_cast<std::size_t>(i)];
+                for (int k = 0; k < 9; ++k)
+                  {
+                    r[m::q + k] = static_cast<float>(Q_[i].data()[k]);
+                    // H = F - I and u = x - X formed in double: the floats keep their digits
+                    r[m::h_grad + k] =
+                      static_cast<float>(p_.F[i].data()[k] - (k % 4 == 0 ? 1.0 : 0.0));
+                  }
+                for (int c = 0; c < 3; ++c)
+                  {
+                    r[m::v + c]  = static_cast<float>(p_.v[i][c]);
+                    r[m::u + c]  = static_cast<float>(p_.x[i][c] - p_.x0[i][c]);
+                    r[m::x0 + c] = static_cast<float>(p_.x0[i][c] - centre0_[c]);
+                  }
+                r[m::h]       = static_cast<float>(p_.h[i]);
+                r[m::density] = static_cast<float>(p_.density[i]);
+                r[m::mass]    = static_cast<float>(p_.mass[i]);
+                r[m::volume]  = static_cast<float>(volume[i]);
+              }
+            return;
+          }
         for (std::int32_t i = begin; i < end; ++i)
           {
             double *r = &record_[pair_kernel::record_size * static_cast<std::size_t>(i)];
-            std::copy(Q_[i].data(), Q_[i].data() + 9, r + f::q);
-            std::copy(p_.F[i].data(), p_.F[i].data() + 9, r + f::f);
+            // element loops, not std::copy: a memmove call per 72 bytes costs more than the copy
+            const double *q = Q_[i].data(), *F = p_.F[i].data();
+            for (int k = 0; k < 9; ++k)
+              {
+                r[f::q + k] = q[k];
+                r[f::f + k] = F[k];
+              }
             for (int d = 0; d < 3; ++d)
               {
                 r[f::x + d]  = p_.x[i][d];

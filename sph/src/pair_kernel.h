@@ -17,15 +17,17 @@ namespace sph::pair_kernel
   {
     enum : int
     {
-      q           = 0,  ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
-      f           = 9,  ///< deformation gradient F, column-major [-]
-      x           = 18, ///< position [m]
-      v           = 21, ///< velocity [m/s]
-      x0          = 24, ///< reference position [m]
-      h           = 27, ///< smoothing length [m]
-      density     = 28, ///< [kg/m^3]
-      mass        = 29, ///< [kg]
-      volume      = 30, ///< V0 (TL) or V (UL) [m^3]
+      // in the order the pair force uses them: each block of four is transposed just before
+      // its use, so few of the 32 lanes are live at once
+      x           = 0,  ///< position [m]
+      v           = 3,  ///< velocity [m/s]
+      h           = 6,  ///< smoothing length [m]
+      density     = 7,  ///< [kg/m^3]
+      mass        = 8,  ///< [kg]
+      volume      = 9,  ///< V0 (TL) or V (UL) [m^3]
+      x0          = 10, ///< reference position [m]
+      q           = 13, ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
+      f           = 22, ///< deformation gradient F, column-major [-]
       record_size = 32
     };
   } // namespace field

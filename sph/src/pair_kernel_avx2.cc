@@ -1,102 +1,60 @@
+#include "avx2_util.h"
 #include "pair_kernel.h"
-
-#include <immintrin.h>
 
 #include <algorithm>
 
 // Built with -ffp-contract=off (sph/CMakeLists.txt): the compiler may not fuse or reorder any of
 // the operations below, so each inlined copy of pair() computes the same bits.
-#define SPH_AVX2 __attribute__((target("avx2,fma"), always_inline)) inline
 
 namespace sph::pair_kernel
 {
   namespace
   {
-    using v4 = __m256d;
+    using avx2::lane_sum;
+    using avx2::pair_vectors;
+    using avx2::pair_vectors_run;
+    using avx2::transpose;
+    using avx2::transpose_load;
+    using avx2::v4;
 
-    /// Columns of the 4 x 4 block (r0..r3 as rows): out[k] = (r0[k], r1[k], r2[k], r3[k]).
-    SPH_AVX2 void transpose(const v4 r0, const v4 r1, const v4 r2, const v4 r3, v4 *out)
+    /// The records of four particles, read a block of four fields at a time as lanes:
+    /// block(b, out): out[k] = field b + k of particles p[0..3].
+    struct Gathered
     {
-      const v4 u0 = _mm256_unpacklo_pd(r0, r1); // r0[0] r1[0] r0[2] r1[2]
-      const v4 u1 = _mm256_unpackhi_pd(r0, r1); // r0[1] r1[1] r0[3] r1[3]
-      const v4 u2 = _mm256_unpacklo_pd(r2, r3);
-      const v4 u3 = _mm256_unpackhi_pd(r2, r3);
-      out[0]      = _mm256_permute2f128_pd(u0, u2, 0x20);
-      out[1]      = _mm256_permute2f128_pd(u1, u3, 0x20);
-      out[2]      = _mm256_permute2f128_pd(u0, u2, 0x31);
-      out[3]      = _mm256_permute2f128_pd(u1, u3, 0x31);
-    }
+      const double *r[4];
+      SPH_AVX2 Gathered(const double *record, const std::int32_t *p)
+      {
+        for (int l = 0; l < 4; ++l)
+          r[l] = record + record_size * static_cast<std::int64_t>(p[l]);
+      }
+      SPH_AVX2 void block(const int b, v4 *out) const
+      {
+        transpose_load(r[0] + b, r[1] + b, r[2] + b, r[3] + b, out);
+      }
+    };
 
-    /// Columns of the 4 x 4 block whose rows start at r0..r3 in memory: out[k] = (r0[k], r1[k],
-    /// r2[k], r3[k]). Half-row loads merged by vinsertf128 and one unpack per column: no
-    /// cross-lane permutes.
-    SPH_AVX2 void transpose_load(const double *r0, const double *r1, const double *r2,
-                                 const double *r3, v4 *out)
+    /// One particle's record in every lane, broadcast once (the same interface).
+    struct Broadcast
     {
-      const v4 t0 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r0)), _mm_loadu_pd(r2),
-                                         1); // r0[0] r0[1] r2[0] r2[1]
-      const v4 t1 =
-        _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r1)), _mm_loadu_pd(r3), 1);
-      const v4 t2 =
-        _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r0 + 2)), _mm_loadu_pd(r2 + 2), 1);
-      const v4 t3 =
-        _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(r1 + 2)), _mm_loadu_pd(r3 + 2), 1);
-      out[0] = _mm256_unpacklo_pd(t0, t1);
-      out[1] = _mm256_unpackhi_pd(t0, t1);
-      out[2] = _mm256_unpacklo_pd(t2, t3);
-      out[3] = _mm256_unpackhi_pd(t2, t3);
-    }
-
-    /// The records of four particles as lanes: lane[k] = field k of particles p[0..3].
-    SPH_AVX2 void gather(const double *record, const std::int32_t *p, v4 *lane)
-    {
-      const double *r0 = record + record_size * static_cast<std::int64_t>(p[0]);
-      const double *r1 = record + record_size * static_cast<std::int64_t>(p[1]);
-      const double *r2 = record + record_size * static_cast<std::int64_t>(p[2]);
-      const double *r3 = record + record_size * static_cast<std::int64_t>(p[3]);
-      for (int b = 0; b < record_size; b += 4)
-        transpose_load(r0 + b, r1 + b, r2 + b, r3 + b, lane + b);
-    }
-
-    /// One particle's record in every lane.
-    SPH_AVX2 void broadcast(const double *record, const std::int32_t i, v4 *lane)
-    {
-      const double *r = record + record_size * static_cast<std::int64_t>(i);
-      for (int k = 0; k < record_size; ++k)
-        lane[k] = _mm256_broadcast_sd(r + k);
-    }
-
-    /// Per-pair vectors of four pairs p[0..3] as lanes: out[d] = (v[p0][d], .., v[p3][d]).
-    SPH_AVX2 void pair_vectors(const double *v, const std::int32_t *p, v4 *out)
-    {
-      const double *q[4] = {
-        v + 3 * static_cast<std::int64_t>(p[0]), v + 3 * static_cast<std::int64_t>(p[1]),
-        v + 3 * static_cast<std::int64_t>(p[2]), v + 3 * static_cast<std::int64_t>(p[3])};
-      for (int d = 0; d < 3; ++d)
-        out[d] = _mm256_set_pd(q[3][d], q[2][d], q[1][d], q[0][d]);
-    }
-
-    /// The same for four consecutive pairs k..k+3: three loads and eight shuffles.
-    SPH_AVX2 void pair_vectors_run(const double *v, const std::int64_t k, v4 *out)
-    {
-      const v4 a  = _mm256_loadu_pd(v + 3 * k);           // 0x 0y 0z 1x
-      const v4 b  = _mm256_loadu_pd(v + 3 * k + 4);       // 1y 1z 2x 2y
-      const v4 c  = _mm256_loadu_pd(v + 3 * k + 8);       // 2z 3x 3y 3z
-      const v4 m1 = _mm256_permute2f128_pd(a, b, 0x21);   // 0z 1x 1y 1z
-      const v4 m2 = _mm256_permute2f128_pd(b, c, 0x21);   // 2x 2y 2z 3x
-      const v4 A  = _mm256_permute2f128_pd(a, m2, 0x20);  // 0x 0y 2x 2y
-      const v4 B  = _mm256_permute2f128_pd(m1, m2, 0x30); // 0z 1x 2z 3x
-      const v4 C  = _mm256_permute2f128_pd(m1, c, 0x31);  // 1y 1z 3y 3z
-      out[0]      = _mm256_shuffle_pd(A, B, 0xA);
-      out[1]      = _mm256_shuffle_pd(A, C, 0x5);
-      out[2]      = _mm256_shuffle_pd(B, C, 0xA);
-    }
+      v4 lane[record_size];
+      SPH_AVX2 Broadcast(const double *record, const std::int32_t i)
+      {
+        const double *r = record + record_size * static_cast<std::int64_t>(i);
+        for (int k = 0; k < record_size; ++k)
+          lane[k] = _mm256_broadcast_sd(r + k);
+      }
+      SPH_AVX2 void block(const int b, v4 *out) const
+      {
+        for (int k = 0; k < 4; ++k)
+          out[k] = lane[b + k];
+      }
+    };
 
     /// The pair data of a group of four: indices, gradients, hourglass factors; a short group
     /// (n_valid < 4) repeats its last pair in the remaining lanes.
     struct Group
     {
-      std::int32_t p[4], j[4];
+      std::int32_t j[4];
       v4 g[3];
       v4 factor;
       v4 valid; ///< all bits set in the lanes of real pairs
@@ -113,24 +71,22 @@ namespace sph::pair_kernel
       if (gr.n_valid == 4)
       {
         for (int l = 0; l < 4; ++l)
-        {
-          gr.p[l] = k + l;
           gr.j[l] = second[k + l];
-        }
         pair_vectors_run(grad_w, k, gr.g);
         gr.factor = hg_factor ? _mm256_loadu_pd(hg_factor + k) : _mm256_setzero_pd();
         gr.valid  = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
       }
       else
       {
+        std::int32_t p[4];
         for (int l = 0; l < 4; ++l)
         {
-          gr.p[l] = std::min(k + l, pe - 1);
-          gr.j[l] = second[gr.p[l]];
+          p[l]    = std::min(k + l, pe - 1);
+          gr.j[l] = second[p[l]];
         }
-        pair_vectors(grad_w, gr.p, gr.g);
-        gr.factor = hg_factor ? _mm256_set_pd(hg_factor[gr.p[3]], hg_factor[gr.p[2]],
-                                              hg_factor[gr.p[1]], hg_factor[gr.p[0]])
+        pair_vectors(grad_w, p, gr.g);
+        gr.factor = hg_factor ? _mm256_set_pd(hg_factor[p[3]], hg_factor[p[2]], hg_factor[p[1]],
+                                              hg_factor[p[0]])
                               : _mm256_setzero_pd();
         gr.valid  = _mm256_castsi256_pd(
            _mm256_cmpgt_epi64(_mm256_set1_epi64x(gr.n_valid), _mm256_set_epi64x(3, 2, 1, 0)));
@@ -146,42 +102,50 @@ namespace sph::pair_kernel
       v4 hg_power; ///< hourglass power [W]
     };
 
-    /// Four pairs (i lanes a, j lanes b, gradients g, hourglass factors).
-    SPH_AVX2 Lanes4 pair(const Args &arg, const v4 *a, const v4 *b, const v4 *g, const v4 factor)
+    /// Four pairs (i side a, j side b: Gathered or Broadcast; gradients g, hourglass factors).
+    /// The fields are read block by block in record order and each block is used at once (the
+    /// record's order is the order of use below).
+    template <typename A, typename B>
+    SPH_AVX2 Lanes4 pair(const Args &arg, const A &a, const B &b, const v4 *g, const v4 factor)
     {
+      namespace f   = field;
       const v4 zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5);
+      v4       ab[4], bb[4]; // the current block of each side
+      static_assert(f::x == 0 && f::v == 3 && f::h == 6 && f::density == 7 && f::mass == 8 &&
+                    f::volume == 9 && f::x0 == 10 && f::q == 13 && f::f == 22);
 
-      v4 xij[3], r2 = zero, vr = zero;
+      // block 0: x, v_x; block 1: v_y, v_z, h, density
+      v4 xij[3], vij[3];
+      a.block(0, ab);
+      b.block(0, bb);
+      for (int d = 0; d < 3; ++d)
+        xij[d] = _mm256_sub_pd(ab[d], bb[d]);
+      vij[0] = _mm256_sub_pd(ab[3], bb[3]);
+      a.block(4, ab);
+      b.block(4, bb);
+      vij[1] = _mm256_sub_pd(ab[0], bb[0]);
+      vij[2] = _mm256_sub_pd(ab[1], bb[1]);
+      v4 r2 = zero, vr = zero;
       for (int d = 0; d < 3; ++d)
       {
-        xij[d]       = _mm256_sub_pd(a[field::x + d], b[field::x + d]);
-        const v4 vij = _mm256_sub_pd(a[field::v + d], b[field::v + d]);
-        r2           = _mm256_fmadd_pd(xij[d], xij[d], r2);
-        vr           = _mm256_fmadd_pd(vij, xij[d], vr);
-      }
-      Lanes4 out;
-      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij (Q column-major: Q(r, k) at 3 k + r)
-      const v4 vv = _mm256_mul_pd(a[field::volume], b[field::volume]);
-      for (int r = 0; r < 3; ++r)
-      {
-        v4 s = zero;
-        for (int k = 0; k < 3; ++k)
-          s = _mm256_fmadd_pd(_mm256_add_pd(a[field::q + 3 * k + r], b[field::q + 3 * k + r]), g[k],
-                              s);
-        out.force[r] = _mm256_mul_pd(vv, s);
+        r2 = _mm256_fmadd_pd(xij[d], xij[d], r2);
+        vr = _mm256_fmadd_pd(vij[d], xij[d], vr);
       }
       // one division for 1/r^2 and the viscosity's two quotients: with D = r^2 + 0.01 hb^2 and
       // z = 1 / (r^2 D rho_ij), 1/r^2 = D rho_ij z, mu = hb vr / D = hb vr r^2 rho_ij z and
       // Pi = mu (beta mu - alpha c) / rho_ij = mu (beta mu - alpha c) r^2 D z
       // (r = 0 lanes are masked below)
       const v4 r2_pos = _mm256_cmp_pd(r2, zero, _CMP_GT_OQ);
-      const v4 hb     = _mm256_mul_pd(half, _mm256_add_pd(a[field::h], b[field::h]));
-      const v4 rho_ij = _mm256_mul_pd(half, _mm256_add_pd(a[field::density], b[field::density]));
+      const v4 hb     = _mm256_mul_pd(half, _mm256_add_pd(ab[2], bb[2]));
+      const v4 rho_ij = _mm256_mul_pd(half, _mm256_add_pd(ab[3], bb[3]));
       const v4 D      = _mm256_fmadd_pd(_mm256_set1_pd(0.01), _mm256_mul_pd(hb, hb), r2);
       const v4 r2D    = _mm256_mul_pd(r2, D);
       const v4 z      = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_mul_pd(r2D, rho_ij));
       const v4 inv_r2 = _mm256_mul_pd(_mm256_mul_pd(D, rho_ij), z);
-      v4 s_av         = zero;
+      // block 2: mass, volume, X_x, X_y
+      a.block(8, ab);
+      b.block(8, bb);
+      v4 s_av = zero;
       if (arg.av)
       {
         const v4 mu =
@@ -196,27 +160,49 @@ namespace sph::pair_kernel
         for (int d = 0; d < 3; ++d)
           gw2 = _mm256_fmadd_pd(g[d], g[d], gw2);
         const v4 gw_r = _mm256_sqrt_pd(_mm256_mul_pd(gw2, r2));
-        s_av = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(a[field::mass], b[field::mass]), pi),
+        s_av = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(ab[0], bb[0]), pi),
                              _mm256_mul_pd(gw_r, inv_r2));
         // only approaching pairs (v_ij . x_ij < 0) at distinct positions
         s_av = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(vr, zero, _CMP_LT_OQ), r2_pos), s_av);
       }
+      const v4 vv = _mm256_mul_pd(ab[1], bb[1]);
+      v4 dx0[3]; // X_j - X_i
+      dx0[0] = _mm256_sub_pd(bb[2], ab[2]);
+      dx0[1] = _mm256_sub_pd(bb[3], ab[3]);
+      // blocks 3 to 7: X_z, Q (9, column-major: Q(r, k) at 3 k + r), F (9, the same), one unused.
+      // Entry e = 0..17 of the Q, F run is field 13 + e, in block (12 + 1 + e) / 4 at lane
+      // (1 + e) % 4
+      v4 qs[3] = {zero, zero, zero}; // sum_k (Q_i + Q_j)(r, k) g[k]
+      v4 y[3]  = {zero, zero, zero}; // sum_k (F_i + F_j)(r, k) X[k]
+#pragma GCC unroll 5
+      for (int blk = 12; blk < 32; blk += 4)
+      {
+        a.block(blk, ab);
+        b.block(blk, bb);
+#pragma GCC unroll 4
+        for (int l = 0; l < 4; ++l)
+        {
+          const int e = blk + l - f::q; // position in the Q, F run
+          if (e == -1)
+            dx0[2] = _mm256_sub_pd(bb[l], ab[l]);
+          else if (e >= 0 && e < 9)
+            qs[e % 3] = _mm256_fmadd_pd(_mm256_add_pd(ab[l], bb[l]), g[e / 3], qs[e % 3]);
+          else if (e >= 9 && e < 18 && arg.hg_factor)
+            y[(e - 9) % 3] =
+              _mm256_fmadd_pd(_mm256_add_pd(ab[l], bb[l]), dx0[(e - 9) / 3], y[(e - 9) % 3]);
+        }
+      }
+      Lanes4 out;
+      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij
+      for (int r = 0; r < 3; ++r)
+        out.force[r] = _mm256_mul_pd(vv, qs[r]);
       v4 s_hg = zero;
       if (arg.hg_factor)
       {
         // e = (F_i + F_j) X / 2 + x_ij with X = X_j - X_i; s_hg = -factor (e . x_ij) / r^2
-        v4 dx0[3];
-        for (int k = 0; k < 3; ++k)
-          dx0[k] = _mm256_sub_pd(b[field::x0 + k], a[field::x0 + k]);
         v4 e_dot = zero;
         for (int r = 0; r < 3; ++r)
-        {
-          v4 y = zero;
-          for (int k = 0; k < 3; ++k)
-            y = _mm256_fmadd_pd(_mm256_add_pd(a[field::f + 3 * k + r], b[field::f + 3 * k + r]),
-                                dx0[k], y);
-          e_dot = _mm256_fmadd_pd(_mm256_fmadd_pd(half, y, xij[r]), xij[r], e_dot);
-        }
+          e_dot = _mm256_fmadd_pd(_mm256_fmadd_pd(half, y[r], xij[r]), xij[r], e_dot);
         s_hg = _mm256_and_pd(
           r2_pos, _mm256_mul_pd(_mm256_mul_pd(factor, e_dot), _mm256_sub_pd(zero, inv_r2)));
       }
@@ -228,13 +214,6 @@ namespace sph::pair_kernel
       return out;
     }
 
-    /// Sum of the four lanes, in one fixed order.
-    SPH_AVX2 double lane_sum(const v4 s)
-    {
-      alignas(32) double l[4];
-      _mm256_store_pd(l, s);
-      return (l[0] + l[1]) + (l[2] + l[3]);
-    }
   } // namespace
 
   bool avx2_available()
@@ -246,7 +225,6 @@ namespace sph::pair_kernel
                                                        const int n, const std::int32_t *first,
                                                        const std::int32_t *second, double *out)
   {
-    v4 la[record_size], lb[record_size];
     for (int k = 0; k < n; k += 4)
     {
       // a short last group repeats its last pair; those lanes' outputs are not read
@@ -257,8 +235,7 @@ namespace sph::pair_kernel
         i[l] = first[p[l]];
         j[l] = second[p[l]];
       }
-      gather(a.record, i, la);
-      gather(a.record, j, lb);
+      const Gathered la(a.record, i), lb(a.record, j);
       v4 g[3];
       pair_vectors(a.grad_w, p, g);
       const v4 factor = a.hg_factor ? _mm256_set_pd(a.hg_factor[p[3]], a.hg_factor[p[2]],
@@ -284,25 +261,32 @@ namespace sph::pair_kernel
   particle_forces(const Args &a, const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
                   const std::int32_t *second, const std::int32_t e, double *f_int, double *sum)
   {
-    v4 la[record_size], lb[record_size];
-    broadcast(a.record, i, la);
+    const Broadcast la(a.record, i);
     const v4 zero = _mm256_setzero_pd();
     v4 acc[5]     = {zero, zero, zero, zero, zero};
     for (std::int32_t k = pb; k < pe; k += 4)
     {
-      const Group gr = run_group(a.grad_w, a.hg_factor, second, k, pe);
-      gather(a.record, gr.j, lb);
-      const Lanes4 r = pair(a, la, lb, gr.g, gr.factor);
+      const Group    gr = run_group(a.grad_w, a.hg_factor, second, k, pe);
+      const Gathered lb(a.record, gr.j);
+      const Lanes4   r = pair(a, la, lb, gr.g, gr.factor);
       // lanes past pe repeat the last pair: they add nothing to the sums
       for (int d = 0; d < 3; ++d)
         acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(gr.valid, r.force[d]));
       acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(gr.valid, r.power));
       acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(gr.valid, r.hg_power));
-      // minus the force on each second particle j < e, pair by pair (ascending p)
+      // minus the force on each second particle j < e, pair by pair (ascending p). f[m] is
+      // (force, 0): below the range's last particle one 4-wide subtraction also takes 0 from
+      // particle j + 1's first entry, which leaves it unchanged (x - 0 = x for every double)
+      // and belongs to this thread (j + 1 < e)
       v4 f[4];
       transpose(r.force[0], r.force[1], r.force[2], zero, f);
       for (int m = 0; m < gr.n_valid; ++m)
-        if (gr.j[m] < e) // else: subtracted by j's owner (cross-range share)
+        if (gr.j[m] < e - 1)
+        {
+          double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
+          _mm256_storeu_pd(fj, _mm256_sub_pd(_mm256_loadu_pd(fj), f[m]));
+        }
+        else if (gr.j[m] == e - 1) // j < e; j >= e: subtracted by j's owner (cross-range share)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -150,10 +151,12 @@ namespace
   TEST(SphBody, SameResultForOneAndTwoThreads)
   {
     // every parallel loop is a gather over fixed, ordered lists, so positions are bitwise equal
-    // for any thread count; a bitwise comparison is the point of this test. Both pair loops:
-    // the vectorised one (where the CPU has AVX2) and the portable scalar one
-    for (const bool vectorised : {true, false})
+    // for any thread count; a bitwise comparison is the point of this test. All three pair
+    // loops: the vectorised ones (where the CPU has AVX2), in mixed and in double precision,
+    // and the portable scalar one
+    for (const int variant : {0, 1, 2})
       {
+        const bool vectorised = variant < 2, single = variant == 0;
         std::vector<std::vector<Vector<3>>> result;
         for (const int threads : {1, 2, 3})
           {
@@ -161,6 +164,7 @@ namespace
             Parameters       p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
             p.n_threads          = threads;
             p.vectorised         = vectorised;
+            p.single_precision   = single;
             MaterialParameters m = elastic_rock();
             m.model              = RockModel::mohr_coulomb;
             m.cohesion           = 1e6;
@@ -179,7 +183,8 @@ namespace
         for (const std::size_t k : {1, 2})
           EXPECT_EQ(0, std::memcmp(result[0].data(), result[k].data(),
                                    result[0].size() * sizeof(Vector<3>)))
-            << "vectorised " << vectorised << ", " << k + 1 << " threads against 1";
+            << "vectorised " << vectorised << ", single precision " << single << ", " << k + 1
+            << " threads against 1";
       }
   }
 
@@ -202,6 +207,7 @@ namespace
             const Lattice<3> lat = make_cylinder<3>(0.01, 0.02, 0.001);
             Parameters       p   = numerics(form, 0.001);
             p.vectorised         = vectorised;
+            p.single_precision   = false; // the double kernel (the mixed one: the next test)
             p.n_threads          = 2;
             MaterialParameters m = elastic_rock();
             m.model              = RockModel::mohr_coulomb;
@@ -238,6 +244,59 @@ namespace
         EXPECT_NEAR(energy[0].hourglass, energy[1].hourglass,
                     1e-10 * std::abs(energy[1].viscous) + 1e-10 * std::abs(energy[1].hourglass));
       }
+  }
+
+  TEST(SphBody, MixedPrecisionPairForceIsTheDoubleOneToFloatRoundOff)
+  {
+    // Parameters::single_precision: the pair force in float with position differences and sums
+    // in double. One state in both bodies, bit for bit: prescribed steps (velocities set, the
+    // internal force cancelled by an external one) of a shear plus random velocities, so x, v,
+    // F and the Mohr-Coulomb stresses do not depend on the pair force; then one force pass in
+    // mixed and one in double precision. Float keeps 6e-8 of each pair term and a particle sums
+    // ~60 terms of both signs: its force is off by a few 1e-7 of the largest forces (measured
+    // 1.2e-7); 1e-5 keeps a margin and still catches a wrong term (the viscous and hourglass
+    // forces carry 1e-3 of the forces or more, a wrong stress entry far more)
+    std::vector<std::vector<Vector<3>>> force;
+    for (const bool single : {true, false})
+      {
+        const Lattice<3> lat = make_cylinder<3>(0.01, 0.02, 0.001);
+        Parameters       p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
+        p.single_precision   = single;
+        MaterialParameters m = elastic_rock();
+        m.model              = RockModel::mohr_coulomb;
+        m.cohesion           = 1e6;
+        m.friction_angle     = 0.5;
+        Body<3> body(p, m, lat.positions, lat.volumes);
+        if (!body.vectorised())
+          GTEST_SKIP() << "this CPU has no AVX2: there is no mixed-precision pair force";
+        ASSERT_EQ(single, body.single_precision());
+        std::mt19937                           rng(11);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        for (int s = 0; s < 4; ++s)
+          {
+            body.compute_forces();
+            for (unsigned i = 0; i < body.n_particles(); ++i)
+              {
+                const Vector<3> &x = body.positions()[i];
+                body.set_velocity(i, Vector<3>(20.0 * x[2] + u(rng), u(rng), -10.0 * x[2] + u(rng)));
+                body.external_forces()[i] = -body.internal_forces()[i] - body.pressure_forces()[i];
+              }
+            body.integrate(1e-7);
+          }
+        body.compute_forces();
+        force.push_back(body.internal_forces());
+      }
+    double scale = 0, worst = 0;
+    for (std::size_t i = 0; i < force[0].size(); ++i)
+      {
+        scale = std::max(scale, force[1][i].norm());
+        worst = std::max(worst, (force[0][i] - force[1][i]).norm());
+      }
+    ASSERT_GT(scale, 0.0) << "the state must be loaded, or the test proves nothing";
+    std::printf("mixed against double precision: worst force difference %.3g of the largest\n",
+                worst / scale);
+    EXPECT_LT(worst, 1e-5 * scale);
+    EXPECT_GT(worst, 0.0) << "the two kernels must differ, or the mixed one did not run";
   }
 
   TEST(SphPressure, UniformPressureOnBlock)

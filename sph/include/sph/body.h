@@ -102,6 +102,8 @@ namespace sph
     const std::vector<Vector<dim>> &internal_forces() const { return p_.f_int; }
     /// True when the pair forces run four at a time (3-D, AVX2, Parameters::vectorised).
     bool vectorised() const { return simd_; }
+    /// True when the vectorised pair force runs in mixed precision (Parameters::single_precision).
+    bool single_precision() const { return mixed_; }
     /// Surface-pressure force of the last `compute_forces` [N].
     const std::vector<Vector<dim>> &pressure_forces() const { return p_.f_pressure; }
 
@@ -239,6 +241,12 @@ namespace sph
     // src/pair_kernel.h, which reads each particle's fields from one record of 32 doubles
     bool                simd_ = false;
     std::vector<double> record_; // per particle: pair_kernel::record_size doubles (simd_ only)
+    // simd_ and Parameters::single_precision: the mixed-precision pair force of
+    // src/pair_kernel_mixed.h, which reads a float record per particle and per pair
+    bool                mixed_ = false;
+    std::vector<float>  frecord_;    // per particle: mixed::float_size floats (mixed_ only)
+    std::vector<float>  pair_float_; // per pair: grad W and hourglass factor (mixed_ only)
+    Vector<dim>         centre0_ = Vector<dim>::Zero(); // reference bounding-box centre [m]
     std::vector<double> position_volume_; // per particle: x and V0 (TL stress pass, simd_ only)
     /// One column of a loaded face: its outer particle, then the particles below it.
     struct FaceColumn

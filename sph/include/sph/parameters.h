@@ -40,6 +40,10 @@ namespace sph
     /// 3-D pair forces four at a time with AVX2 where the CPU has it (false: the portable scalar
     /// loop; the two differ by round-off only)
     bool        vectorised  = true;
+    /// With `vectorised`: the pair force in mixed precision, eight pairs at a time (differences
+    /// of positions and the sums in double, the rest in float; src/pair_kernel_mixed.h). Used at
+    /// spacings of 0.1 mm and more (finer ones keep double: |grad W|^2 would overflow a float)
+    bool        single_precision = true;
   };
 
   /// Rock material. Strengths are positive numbers; stress in code is tension-positive.

@@ -1,0 +1,254 @@
+#include "avx2_util.h"
+#include "pair_kernel_mixed.h"
+
+#include <algorithm>
+
+// Built with -ffp-contract=off (sph/CMakeLists.txt), as pair_kernel_avx2.cc: each inlined copy of
+// pair() computes the same bits.
+
+namespace sph::pair_kernel::mixed
+{
+  namespace
+  {
+    using avx2::lane_sum;
+    using avx2::transpose;
+    using avx2::v4;
+    using v8 = __m256;
+
+    /// Floats b..b+3 of the eight rows r[0..7] as lanes: out[k] = (r[0][b + k], .., r[7][b + k]).
+    /// Eight 16-byte loads, two per register, and a 4 x 4 transpose inside each 128-bit half.
+    SPH_AVX2 void transpose_block(const float *const *r, const int b, v8 *out)
+    {
+      v8 t[4]; // t[k] = floats b..b+3 of row k (low half) and of row k + 4 (high half)
+      for (int k = 0; k < 4; ++k)
+        t[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(r[k] + b)),
+                                    _mm_loadu_ps(r[k + 4] + b), 1);
+      const v8 u0 = _mm256_unpacklo_ps(t[0], t[1]); // b of 0 1, b+1 of 0 1 | the same of 4 5
+      const v8 u1 = _mm256_unpackhi_ps(t[0], t[1]); // b+2 of 0 1, b+3 of 0 1 | ..
+      const v8 u2 = _mm256_unpacklo_ps(t[2], t[3]);
+      const v8 u3 = _mm256_unpackhi_ps(t[2], t[3]);
+      out[0]      = _mm256_shuffle_ps(u0, u2, 0x44);
+      out[1]      = _mm256_shuffle_ps(u0, u2, 0xEE);
+      out[2]      = _mm256_shuffle_ps(u1, u3, 0x44);
+      out[3]      = _mm256_shuffle_ps(u1, u3, 0xEE);
+    }
+
+    /// The records of eight particles as lanes: lane[k] = field k of particles j[0..7].
+    SPH_AVX2 void gather(const float *record, const std::int32_t *j, v8 *lane)
+    {
+      const float *r[8];
+      for (int l = 0; l < 8; ++l)
+        r[l] = record + float_size * static_cast<std::int64_t>(j[l]);
+#pragma GCC unroll 8
+      for (int b = 0; b < float_size; b += 4)
+        transpose_block(r, b, lane + b);
+    }
+
+    /// One particle's record in every lane.
+    SPH_AVX2 void broadcast(const float *record, const std::int32_t i, v8 *lane)
+    {
+      const float *r = record + float_size * static_cast<std::int64_t>(i);
+      for (int k = 0; k < float_size; ++k)
+        lane[k] = _mm256_broadcast_ss(r + k);
+    }
+
+    /// The exact double values of eight floats, in two groups of four.
+    SPH_AVX2 void widen(const v8 x, v4 &lo, v4 &hi)
+    {
+      lo = _mm256_cvtps_pd(_mm256_castps256_ps128(x));
+      hi = _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1));
+    }
+
+    /// Per-pair data of eight pairs: g[0..2] = grad_i W_ij, g[3] = hourglass factor.
+    SPH_AVX2 void pair_data(const float *pair, const std::int32_t *p, v8 *g)
+    {
+      const float *r[8];
+      for (int l = 0; l < 8; ++l)
+        r[l] = pair + pair_size * static_cast<std::int64_t>(p[l]);
+      transpose_block(r, 0, g);
+    }
+
+    /// What pair() gives for eight pairs, in lanes.
+    struct Lanes8
+    {
+      v8 force[3]; ///< on the first particle [N]
+      v8 power;    ///< viscous power [W] (<= 0)
+      v8 hg_power; ///< hourglass power [W]
+    };
+
+    /// Eight pairs (i lanes a, j lanes b, geometry, gradients g, hourglass factors): the terms of
+    /// pair_kernel_avx2.cc's pair() in single precision.
+    SPH_AVX2 Lanes8 pair(const Args &arg, const v8 *a, const v8 *b, const v8 *g)
+    {
+      const v8 zero = _mm256_setzero_ps(), half = _mm256_set1_ps(0.5f);
+      // u_ij = u_i - u_j, X = X_j - X_i, x_ij = u_ij - X
+      v8 uij[3], dX[3], xij[3];
+      v8 r2 = zero, vr = zero;
+      for (int d = 0; d < 3; ++d)
+      {
+        uij[d]       = _mm256_sub_ps(a[field::u + d], b[field::u + d]);
+        dX[d]        = _mm256_sub_ps(b[field::x0 + d], a[field::x0 + d]);
+        xij[d]       = _mm256_sub_ps(uij[d], dX[d]);
+        const v8 vij = _mm256_sub_ps(a[field::v + d], b[field::v + d]);
+        r2           = _mm256_fmadd_ps(xij[d], xij[d], r2);
+        vr           = _mm256_fmadd_ps(vij, xij[d], vr);
+      }
+      Lanes8 out;
+      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij (Q column-major: Q(r, k) at 3 k + r)
+      const v8 vv = _mm256_mul_ps(a[field::volume], b[field::volume]);
+      for (int r = 0; r < 3; ++r)
+      {
+        v8 s = zero;
+        for (int k = 0; k < 3; ++k)
+          s = _mm256_fmadd_ps(_mm256_add_ps(a[field::q + 3 * k + r], b[field::q + 3 * k + r]), g[k],
+                              s);
+        out.force[r] = _mm256_mul_ps(vv, s);
+      }
+      // one division for 1/r^2 and the viscosity's quotients (see pair_kernel_avx2.cc)
+      const v8 r2_pos = _mm256_cmp_ps(r2, zero, _CMP_GT_OQ);
+      const v8 hb     = _mm256_mul_ps(half, _mm256_add_ps(a[field::h], b[field::h]));
+      const v8 rho_ij = _mm256_mul_ps(half, _mm256_add_ps(a[field::density], b[field::density]));
+      const v8 D      = _mm256_fmadd_ps(_mm256_set1_ps(0.01f), _mm256_mul_ps(hb, hb), r2);
+      const v8 r2D    = _mm256_mul_ps(r2, D);
+      const v8 z      = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(r2D, rho_ij));
+      const v8 inv_r2 = _mm256_mul_ps(_mm256_mul_ps(D, rho_ij), z);
+      v8 s_av         = zero;
+      if (arg.av)
+      {
+        const v8 mu =
+          _mm256_mul_ps(_mm256_mul_ps(hb, vr), _mm256_mul_ps(_mm256_mul_ps(r2, rho_ij), z));
+        const v8 pi = _mm256_mul_ps(
+          _mm256_mul_ps(mu, _mm256_fmadd_ps(_mm256_set1_ps(static_cast<float>(arg.beta)), mu,
+                                            _mm256_set1_ps(static_cast<float>(-arg.alpha * arg.c)))),
+          _mm256_mul_ps(r2D, z));
+        v8 gw2 = zero;
+        for (int d = 0; d < 3; ++d)
+          gw2 = _mm256_fmadd_ps(g[d], g[d], gw2);
+        const v8 gw_r = _mm256_sqrt_ps(_mm256_mul_ps(gw2, r2));
+        s_av = _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(a[field::mass], b[field::mass]), pi),
+                             _mm256_mul_ps(gw_r, inv_r2));
+        // only approaching pairs (v_ij . x_ij < 0) at distinct positions
+        s_av = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(vr, zero, _CMP_LT_OQ), r2_pos), s_av);
+      }
+      v8 s_hg = zero;
+      if (arg.hourglass)
+      {
+        // e = (F_i + F_j) X / 2 + x_ij = (H_i + H_j) X / 2 + u_ij (F = I + H, X = X_j - X_i,
+        // u_ij = x_ij + X); s_hg = -factor (e . x_ij) / r^2
+        v8 e_dot = zero;
+        for (int r = 0; r < 3; ++r)
+        {
+          v8 y = zero;
+          for (int k = 0; k < 3; ++k)
+            y = _mm256_fmadd_ps(
+              _mm256_add_ps(a[field::h_grad + 3 * k + r], b[field::h_grad + 3 * k + r]),
+              dX[k], y);
+          e_dot = _mm256_fmadd_ps(_mm256_fmadd_ps(half, y, uij[r]), xij[r], e_dot);
+        }
+        s_hg = _mm256_and_ps(
+          r2_pos, _mm256_mul_ps(_mm256_mul_ps(g[3], e_dot), _mm256_sub_ps(zero, inv_r2)));
+      }
+      const v8 s = _mm256_add_ps(s_av, s_hg);
+      for (int d = 0; d < 3; ++d)
+        out.force[d] = _mm256_fmadd_ps(s, xij[d], out.force[d]);
+      out.power    = _mm256_mul_ps(s_av, vr);
+      out.hg_power = _mm256_mul_ps(s_hg, vr);
+      return out;
+    }
+  } // namespace
+
+  __attribute__((target("avx2,fma"))) void list_forces(const Args &a, const std::int32_t *list,
+                                                       const int n, const std::int32_t *first,
+                                                       const std::int32_t *second, double *out)
+  {
+    v8 la[float_size], lb[float_size];
+    for (int k = 0; k < n; k += 8)
+    {
+      // a short last group repeats its last pair; only the real pairs' outputs are written
+      std::int32_t p[8], i[8], j[8];
+      for (int l = 0; l < 8; ++l)
+      {
+        p[l] = list[std::min(k + l, n - 1)];
+        i[l] = first[p[l]];
+        j[l] = second[p[l]];
+      }
+      v8 g[pair_size];
+      pair_data(a.pair, p, g);
+      gather(a.record, i, la);
+      gather(a.record, j, lb);
+      const Lanes8 r = pair(a, la, lb, g);
+      // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its hourglass
+      // power, in double (exact)
+      v4 f_lo[3], f_hi[3], p_lo, p_hi, h_lo, h_hi;
+      for (int d = 0; d < 3; ++d)
+        widen(r.force[d], f_lo[d], f_hi[d]);
+      widen(r.power, p_lo, p_hi);
+      widen(r.hg_power, h_lo, h_hi);
+      v4 rows[8];
+      transpose(f_lo[0], f_lo[1], f_lo[2], p_lo, rows);
+      transpose(f_hi[0], f_hi[1], f_hi[2], p_hi, rows + 4);
+      alignas(32) double hp[8];
+      _mm256_store_pd(hp, h_lo);
+      _mm256_store_pd(hp + 4, h_hi);
+      double   *o     = out + out_size * k;
+      const int valid = std::min(8, n - k);
+      for (int m = 0; m < valid; ++m)
+      {
+        _mm256_storeu_pd(o + out_size * m, rows[m]);
+        o[out_size * m + 4] = hp[m];
+      }
+    }
+  }
+
+  __attribute__((target("avx2,fma"))) void
+  particle_forces(const Args &a, const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
+                  const std::int32_t *second, const std::int32_t e, double *f_int, double *sum)
+  {
+    v8 la[float_size], lb[float_size];
+    broadcast(a.record, i, la);
+    const v4 zero = _mm256_setzero_pd();
+    const __m256i lane_index = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    v4 acc[5]     = {zero, zero, zero, zero, zero};
+    for (std::int32_t k = pb; k < pe; k += 8)
+    {
+      // a short group (fewer than 8 pairs left) repeats its last pair in the remaining lanes
+      const int    n_valid = std::min(8, pe - k);
+      std::int32_t p[8], j[8];
+      for (int l = 0; l < 8; ++l)
+      {
+        p[l] = std::min(k + l, pe - 1);
+        j[l] = second[p[l]];
+      }
+      const v8 valid =
+        _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(n_valid), lane_index));
+      v8 g[pair_size];
+      pair_data(a.pair, p, g);
+      gather(a.record, j, lb);
+      const Lanes8 r = pair(a, la, lb, g);
+      // the sums on i in double, lanes past pe masked
+      const v8 out[5] = {r.force[0], r.force[1], r.force[2], r.power, r.hg_power};
+      for (int c = 0; c < 5; ++c)
+      {
+        v4 lo, hi;
+        widen(_mm256_and_ps(valid, out[c]), lo, hi);
+        acc[c] = _mm256_add_pd(_mm256_add_pd(acc[c], lo), hi);
+      }
+      // minus the force on each second particle j < e, pair by pair (ascending p)
+      v4 f_lo[3], f_hi[3];
+      for (int d = 0; d < 3; ++d)
+        widen(r.force[d], f_lo[d], f_hi[d]);
+      v4 f[8];
+      transpose(f_lo[0], f_lo[1], f_lo[2], zero, f);
+      transpose(f_hi[0], f_hi[1], f_hi[2], zero, f + 4);
+      for (int m = 0; m < n_valid; ++m)
+        if (j[m] < e) // else: subtracted by j's owner (cross-range share)
+        {
+          double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
+          _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
+          fj[2] -= _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
+        }
+    }
+    for (int c = 0; c < 5; ++c)
+      sum[c] = lane_sum(acc[c]);
+  }
+} // namespace sph::pair_kernel::mixed
