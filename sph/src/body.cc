@@ -236,7 +236,18 @@ namespace sph
     for (long p = 0; p < static_cast<long>(n_p); ++p)
       {
         const int i = pairs_.first[p], j = pairs_.second[p];
-        grad_w_[p]  = kernels::grad_w<dim>(kernel, p_.x[i] - p_.x[j], 0.5 * (p_.h[i] + p_.h[j]));
+        grad_w_[p] = kernels::grad_w<dim>(kernel, p_.x[i] - p_.x[j], 0.5 * (p_.h[i] + p_.h[j]));
+        // mixed precision: the gradients are floats (rounded once, 6e-8), and every sum over
+        // the pairs (correction L, F, area vectors, forces) uses these same values, so a linear
+        // field's gradient stays exact and the float pair data read by the kernels is exact.
+        // Through a volatile float: GCC 12.2's SLP vectoriser drops the round trip
+        // double -> float -> double on all but the last component (-O2 and -O3)
+        if (mixed_)
+          for (int d = 0; d < dim; ++d)
+            {
+              const volatile float rounded = static_cast<float>(grad_w_[p][d]);
+              grad_w_[p][d]                = rounded;
+            }
         if (tl)
           {
             const double X2 = (p_.x0[j] - p_.x0[i]).squaredNorm();
@@ -495,7 +506,8 @@ namespace sph
                           double own[dd];
                           pair_kernel::particle_gradient(
                             position_volume_.data(),
-                            reinterpret_cast<const double *>(grad_w_.data()), i, pair_begin_[i],
+                            reinterpret_cast<const double *>(grad_w_.data()),
+                            mixed_ ? pair_float_.data() : nullptr, i, pair_begin_[i],
                             pair_begin_[i + 1], pairs_.second.data(), e, p_.F[0].data(), own);
                           for (int r = 0; r < dim; ++r)
                             for (int c = 0; c < dim; ++c)

@@ -69,7 +69,11 @@ namespace sph::pair_kernel
   /// particle j < e, V0_i (x_j - x_i) (x) g, to a[9 j ..] in pair order (a product rounded, then
   /// one addition per entry, as the cross-range shares are); returns i's own sum in own[0..8]
   /// (a fixed order: lanes, then lane sums).
-  void particle_gradient(const double *position_volume, const double *grad_w, std::int32_t i,
-                         std::int32_t pb, std::int32_t pe, const std::int32_t *second,
-                         std::int32_t e, double *a, double *own);
+  /// The gradients are read from grad_w (3 doubles per pair) or, where pair_float is not null,
+  /// from its 4 floats per pair (the gradient, then the hourglass factor; mixed precision, whose
+  /// gradients are floats: 16 bytes a pair to stream instead of 24, the same values).
+  void particle_gradient(const double *position_volume, const double *grad_w,
+                         const float *pair_float, std::int32_t i, std::int32_t pb,
+                         std::int32_t pe, const std::int32_t *second, std::int32_t e, double *a,
+                         double *own);
 } // namespace sph::pair_kernel

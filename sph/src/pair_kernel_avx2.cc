@@ -72,7 +72,8 @@ namespace sph::pair_kernel
       {
         for (int l = 0; l < 4; ++l)
           gr.j[l] = second[k + l];
-        pair_vectors_run(grad_w, k, gr.g);
+        if (grad_w) // (else: the caller reads the gradients)
+          pair_vectors_run(grad_w, k, gr.g);
         gr.factor = hg_factor ? _mm256_loadu_pd(hg_factor + k) : _mm256_setzero_pd();
         gr.valid  = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
       }
@@ -84,7 +85,8 @@ namespace sph::pair_kernel
           p[l]    = std::min(k + l, pe - 1);
           gr.j[l] = second[p[l]];
         }
-        pair_vectors(grad_w, p, gr.g);
+        if (grad_w)
+          pair_vectors(grad_w, p, gr.g);
         gr.factor = hg_factor ? _mm256_set_pd(hg_factor[p[3]], hg_factor[p[2]], hg_factor[p[1]],
                                               hg_factor[p[0]])
                               : _mm256_setzero_pd();
@@ -298,9 +300,9 @@ namespace sph::pair_kernel
   }
 
   __attribute__((target("avx2,fma"))) void
-  particle_gradient(const double *position_volume, const double *grad_w, const std::int32_t i,
-                    const std::int32_t pb, const std::int32_t pe, const std::int32_t *second,
-                    const std::int32_t e, double *a, double *own)
+  particle_gradient(const double *position_volume, const double *grad_w, const float *pair_float,
+                    const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
+                    const std::int32_t *second, const std::int32_t e, double *a, double *own)
   {
     const double *xi = position_volume + 4 * static_cast<std::int64_t>(i);
     const v4 x_i[3]  = {_mm256_broadcast_sd(xi), _mm256_broadcast_sd(xi + 1),
@@ -312,7 +314,19 @@ namespace sph::pair_kernel
       acc[k] = zero;
     for (std::int32_t k = pb; k < pe; k += 4)
     {
-      const Group gr        = run_group(grad_w, nullptr, second, k, pe);
+      Group gr = run_group(pair_float ? nullptr : grad_w, nullptr, second, k, pe);
+      if (pair_float)
+      {
+        // pair p's (g, factor) as four doubles (exact), transposed: lanes = pairs
+        v4 rows[4];
+        for (int l = 0; l < 4; ++l)
+          rows[l] = _mm256_cvtps_pd(
+            _mm_loadu_ps(pair_float + 4 * static_cast<std::int64_t>(std::min(k + l, pe - 1))));
+        v4 cols[4];
+        transpose(rows[0], rows[1], rows[2], rows[3], cols);
+        for (int d = 0; d < 3; ++d)
+          gr.g[d] = cols[d];
+      }
       const std::int32_t *j = gr.j;
       const v4 *g           = gr.g;
       const v4 valid        = gr.valid;
