@@ -91,6 +91,8 @@ namespace coupling
       {"SPH", "Loaded face correction", Kind::boolean, "true", "",
        "UCS/CTCS: move the symmetric force's boundary term onto the layer the platen loads"},
       {"SPH", "Threads", Kind::integer, "0", "", "threads; 0 = all cores"},
+      {"SPH", "Pair force precision", Kind::selection, "mixed", "mixed|double",
+       "3-D pair force on AVX2: float terms with double differences and sums (mixed) or all double"},
 
       {"Platens", "Model", Kind::selection, "rigid", "rigid|elastic", "rigid (prescribed) or elastic steel (FEM)"},
       {"Platens", "Friction coefficient", Kind::real, "0", "", "Coulomb friction rock-platen [-]"},
@@ -650,6 +652,7 @@ namespace coupling
     p.sph.av_beta = r.real("SPH/Viscosity beta");
     p.sph.hourglass = r.real("SPH/Hourglass coefficient");
     p.sph.n_threads = r.integer("SPH/Threads");
+    p.sph.single_precision = r.get("SPH/Pair force precision") == "mixed";
     const bool cutting = p.test == "indentation" || p.test == "linear-cutting";
     const double smallest = p.test == "BTS" ? std::min(p.diameter, p.length) : std::min(p.diameter, p.length);
     r.require(p.sph.spacing > 0, "SPH/Particle spacing", "must be > 0 m (e.g. 0.001 to 0.005)");

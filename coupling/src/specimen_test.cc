@@ -99,6 +99,7 @@ namespace coupling
       p.av_beta   = s.av_beta;
       p.hourglass = s.hourglass;
       p.n_threads = s.n_threads;
+      p.single_precision = s.single_precision;
       return p;
     }
 

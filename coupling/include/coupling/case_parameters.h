@@ -42,6 +42,7 @@ namespace coupling
     double av_beta = 1.0;         ///< Monaghan artificial viscosity, quadratic term [-]
     double hourglass = 0.1;       ///< total-Lagrangian hourglass coefficient [-]
     int n_threads = 0;            ///< 0 = all cores
+    bool single_precision = true; ///< 3-D pair force in mixed precision (SPH/Pair force precision)
     bool loaded_face_correction = true; ///< UCS/CTCS: boundary term lumped on the loaded layer
   };
 
