@@ -184,6 +184,13 @@ TEST(BadInput, ResidualFrictionAngleAboveFrictionOrWithoutMohrCoulomb)
                    {"Rock/Residual friction angle", "'abc'"});
 }
 
+TEST(BadInput, UnknownPairForcePrecision)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/Pair force precision=single"},
+                   {"SPH/Pair force precision", "'single'", "mixed, double"});
+}
+
 TEST(BadInput, NanValue)
 {
   Sandbox box;
