@@ -1,6 +1,7 @@
 // sph_bench: particle-steps per second and peak RSS of a 3-D cylinder in uniaxial compression
 // (FORM 8, Mohr-Coulomb, artificial viscosity, hourglass control). Not a test.
-// Usage: sph_bench [spacing_m = 1.2e-3] [steps = 200] [threads = 0 (all)]
+// Usage: sph_bench [spacing_m = 1.2e-3] [steps = 200] [threads = 0 (all)] [mixed|double = mixed]
+// (the last: the pair force's precision, Parameters::single_precision)
 #include <sph/body.h>
 #include <sph/lattice.h>
 
@@ -11,16 +12,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <string>
 
 int main(int argc, char **argv)
 {
   const double dx      = argc > 1 ? std::atof(argv[1]) : 1.2e-3;
   const int    n_steps = argc > 2 ? std::atoi(argv[2]) : 200;
   const int    threads = argc > 3 ? std::atoi(argv[3]) : 0;
+  const bool   single  = argc > 4 ? std::string(argv[4]) != "double" : true;
 
   sph::Parameters prm;
   prm.spacing   = dx;
   prm.n_threads = threads;
+  prm.single_precision = single;
   sph::MaterialParameters mat; // defaults: M1 basalt, Mohr-Coulomb
   mat.softening_strain = 2e-3;
 
@@ -52,8 +56,8 @@ int main(int argc, char **argv)
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   const double rss_kb = static_cast<double>(usage.ru_maxrss);
-  std::printf("particles %u  pairs %zu  steps %d  setup %.2f s  wall %.2f s\n", n, body.n_pairs(),
-              n_steps, setup, wall);
+  std::printf("particles %u  pairs %zu  steps %d  setup %.2f s  wall %.2f s  pair force %s\n", n,
+              body.n_pairs(), n_steps, setup, wall, body.single_precision() ? "mixed" : "double");
   std::printf("particle-steps/s %.3g  peak RSS %.0f MB  (%.0f bytes/particle incl. process)\n",
               n * static_cast<double>(n_steps) / wall, rss_kb / 1024, rss_kb * 1024 / n);
   // CPU seconds of all threads in the time loop: on a shared machine the wall clock measures the

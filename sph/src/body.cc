@@ -266,6 +266,8 @@ namespace sph
             r[d] = static_cast<float>(grad_w_[p][d]);
           r[pair_size - 1] = tl ? static_cast<float>(hg_factor_[p]) : 0.0f;
         }
+    if (mixed_) // every pair force reads the float copy: 8 bytes a pair less to hold
+      std::vector<double>().swap(hg_factor_);
     partition_pairs();
   }
 

@@ -319,9 +319,18 @@ namespace sph::pair_kernel
       {
         // pair p's (g, factor) as four doubles (exact), transposed: lanes = pairs
         v4 rows[4];
-        for (int l = 0; l < 4; ++l)
-          rows[l] = _mm256_cvtps_pd(
-            _mm_loadu_ps(pair_float + 4 * static_cast<std::int64_t>(std::min(k + l, pe - 1))));
+        const float *r = pair_float + 4 * static_cast<std::int64_t>(k);
+        if (gr.n_valid == 4) // 64 contiguous bytes
+        {
+          const __m256 a01 = _mm256_loadu_ps(r), a23 = _mm256_loadu_ps(r + 8);
+          rows[0]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a01));
+          rows[1]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a01, 1));
+          rows[2]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a23));
+          rows[3]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a23, 1));
+        }
+        else
+          for (int l = 0; l < 4; ++l)
+            rows[l] = _mm256_cvtps_pd(_mm_loadu_ps(r + 4 * std::min(l, gr.n_valid - 1)));
         v4 cols[4];
         transpose(rows[0], rows[1], rows[2], rows[3], cols);
         for (int d = 0; d < 3; ++d)

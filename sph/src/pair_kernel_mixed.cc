@@ -59,6 +59,28 @@ namespace sph::pair_kernel::mixed
       hi = _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1));
     }
 
+    /// The same for the eight consecutive pairs k..k+7: four 32-byte loads and the same
+    /// transpose (the same values as pair_data).
+    SPH_AVX2 void pair_data_run(const float *pair, const std::int32_t k, v8 *g)
+    {
+      const float *r  = pair + pair_size * static_cast<std::int64_t>(k);
+      const v8     a0 = _mm256_loadu_ps(r), a1 = _mm256_loadu_ps(r + 8); // pairs 0 1, 2 3
+      const v8     a2 = _mm256_loadu_ps(r + 16), a3 = _mm256_loadu_ps(r + 24); // 4 5, 6 7
+      v8 t[4]; // t[m] = pair m (low half) and pair m + 4 (high half)
+      t[0]        = _mm256_permute2f128_ps(a0, a2, 0x20);
+      t[1]        = _mm256_permute2f128_ps(a0, a2, 0x31);
+      t[2]        = _mm256_permute2f128_ps(a1, a3, 0x20);
+      t[3]        = _mm256_permute2f128_ps(a1, a3, 0x31);
+      const v8 u0 = _mm256_unpacklo_ps(t[0], t[1]);
+      const v8 u1 = _mm256_unpackhi_ps(t[0], t[1]);
+      const v8 u2 = _mm256_unpacklo_ps(t[2], t[3]);
+      const v8 u3 = _mm256_unpackhi_ps(t[2], t[3]);
+      g[0]        = _mm256_shuffle_ps(u0, u2, 0x44);
+      g[1]        = _mm256_shuffle_ps(u0, u2, 0xEE);
+      g[2]        = _mm256_shuffle_ps(u1, u3, 0x44);
+      g[3]        = _mm256_shuffle_ps(u1, u3, 0xEE);
+    }
+
     /// Per-pair data of eight pairs: g[0..2] = grad_i W_ij, g[3] = hourglass factor.
     SPH_AVX2 void pair_data(const float *pair, const std::int32_t *p, v8 *g)
     {
@@ -222,7 +244,10 @@ namespace sph::pair_kernel::mixed
       const v8 valid =
         _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(n_valid), lane_index));
       v8 g[pair_size];
-      pair_data(a.pair, p, g);
+      if (n_valid == 8)
+        pair_data_run(a.pair, k, g);
+      else
+        pair_data(a.pair, p, g);
       gather(a.record, j, lb);
       const Lanes8 r = pair(a, la, lb, g);
       // the sums on i in double, lanes past pe masked
@@ -240,8 +265,15 @@ namespace sph::pair_kernel::mixed
       v4 f[8];
       transpose(f_lo[0], f_lo[1], f_lo[2], zero, f);
       transpose(f_hi[0], f_hi[1], f_hi[2], zero, f + 4);
+      // (below the range's last particle one 4-wide subtraction of (force, 0), as in
+      // pair_kernel_avx2.cc: particle j + 1's first entry minus 0 is unchanged)
       for (int m = 0; m < n_valid; ++m)
-        if (j[m] < e) // else: subtracted by j's owner (cross-range share)
+        if (j[m] < e - 1)
+        {
+          double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
+          _mm256_storeu_pd(fj, _mm256_sub_pd(_mm256_loadu_pd(fj), f[m]));
+        }
+        else if (j[m] == e - 1) // j < e; j >= e: subtracted by j's owner (cross-range share)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
