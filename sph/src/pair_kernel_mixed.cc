@@ -33,17 +33,6 @@ namespace sph::pair_kernel::mixed
       out[3]      = _mm256_shuffle_ps(u1, u3, 0xEE);
     }
 
-    /// The records of eight particles as lanes: lane[k] = field k of particles j[0..7].
-    SPH_AVX2 void gather(const float *record, const std::int32_t *j, v8 *lane)
-    {
-      const float *r[8];
-      for (int l = 0; l < 8; ++l)
-        r[l] = record + float_size * static_cast<std::int64_t>(j[l]);
-#pragma GCC unroll 8
-      for (int b = 0; b < float_size; b += 4)
-        transpose_block(r, b, lane + b);
-    }
-
     /// One particle's record in every lane.
     SPH_AVX2 void broadcast(const float *record, const std::int32_t i, v8 *lane)
     {
@@ -98,38 +87,68 @@ namespace sph::pair_kernel::mixed
       v8 hg_power; ///< hourglass power [W]
     };
 
-    /// Eight pairs (i lanes a, j lanes b, geometry, gradients g, hourglass factors): the terms of
-    /// pair_kernel_avx2.cc's pair() in single precision.
-    SPH_AVX2 Lanes8 pair(const Args &arg, const v8 *a, const v8 *b, const v8 *g)
+    /// The records of eight particles, read a block of four fields at a time as lanes.
+    struct Gathered
     {
+      const float *r[8];
+      SPH_AVX2 Gathered(const float *record, const std::int32_t *p)
+      {
+        for (int l = 0; l < 8; ++l)
+          r[l] = record + float_size * static_cast<std::int64_t>(p[l]);
+      }
+      SPH_AVX2 void block(const int b, v8 *out) const { transpose_block(r, b, out); }
+    };
+
+    /// One particle's record in every lane, broadcast once (the same interface).
+    struct Broadcast
+    {
+      v8 lane[float_size];
+      SPH_AVX2 Broadcast(const float *record, const std::int32_t i) { broadcast(record, i, lane); }
+      SPH_AVX2 void block(const int b, v8 *out) const
+      {
+        for (int k = 0; k < 4; ++k)
+          out[k] = lane[b + k];
+      }
+    };
+
+    /// Eight pairs (i side a, j side b: Gathered or Broadcast; g[0..2] gradients, g[3] hourglass
+    /// factors): the terms of pair_kernel_avx2.cc's pair() in single precision. The record's
+    /// blocks are read in order and each is used at once (field order = order of use).
+    template <typename A, typename B>
+    SPH_AVX2 Lanes8 pair(const Args &arg, const A &a, const B &b, const v8 *g)
+    {
+      namespace f   = field;
       const v8 zero = _mm256_setzero_ps(), half = _mm256_set1_ps(0.5f);
+      static_assert(f::u == 0 && f::x0 == 3 && f::v == 6 && f::h == 9 && f::density == 10 &&
+                    f::mass == 11 && f::volume == 12 && f::q == 13 && f::h_grad == 22);
+      v8 ab[4], bb[4]; // the current block of each side
       // u_ij = u_i - u_j, X = X_j - X_i, x_ij = u_ij - X
-      v8 uij[3], dX[3], xij[3];
+      v8 uij[3], dX[3], xij[3], vij[3];
+      a.block(0, ab); // u, X_x
+      b.block(0, bb);
+      for (int d = 0; d < 3; ++d)
+        uij[d] = _mm256_sub_ps(ab[d], bb[d]);
+      dX[0] = _mm256_sub_ps(bb[3], ab[3]);
+      a.block(4, ab); // X_y, X_z, v_x, v_y
+      b.block(4, bb);
+      dX[1]  = _mm256_sub_ps(bb[0], ab[0]);
+      dX[2]  = _mm256_sub_ps(bb[1], ab[1]);
+      vij[0] = _mm256_sub_ps(ab[2], bb[2]);
+      vij[1] = _mm256_sub_ps(ab[3], bb[3]);
+      a.block(8, ab); // v_z, h, density, mass
+      b.block(8, bb);
+      vij[2] = _mm256_sub_ps(ab[0], bb[0]);
       v8 r2 = zero, vr = zero;
       for (int d = 0; d < 3; ++d)
       {
-        uij[d]       = _mm256_sub_ps(a[field::u + d], b[field::u + d]);
-        dX[d]        = _mm256_sub_ps(b[field::x0 + d], a[field::x0 + d]);
-        xij[d]       = _mm256_sub_ps(uij[d], dX[d]);
-        const v8 vij = _mm256_sub_ps(a[field::v + d], b[field::v + d]);
-        r2           = _mm256_fmadd_ps(xij[d], xij[d], r2);
-        vr           = _mm256_fmadd_ps(vij, xij[d], vr);
-      }
-      Lanes8 out;
-      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij (Q column-major: Q(r, k) at 3 k + r)
-      const v8 vv = _mm256_mul_ps(a[field::volume], b[field::volume]);
-      for (int r = 0; r < 3; ++r)
-      {
-        v8 s = zero;
-        for (int k = 0; k < 3; ++k)
-          s = _mm256_fmadd_ps(_mm256_add_ps(a[field::q + 3 * k + r], b[field::q + 3 * k + r]), g[k],
-                              s);
-        out.force[r] = _mm256_mul_ps(vv, s);
+        xij[d] = _mm256_sub_ps(uij[d], dX[d]);
+        r2     = _mm256_fmadd_ps(xij[d], xij[d], r2);
+        vr     = _mm256_fmadd_ps(vij[d], xij[d], vr);
       }
       // one division for 1/r^2 and the viscosity's quotients (see pair_kernel_avx2.cc)
       const v8 r2_pos = _mm256_cmp_ps(r2, zero, _CMP_GT_OQ);
-      const v8 hb     = _mm256_mul_ps(half, _mm256_add_ps(a[field::h], b[field::h]));
-      const v8 rho_ij = _mm256_mul_ps(half, _mm256_add_ps(a[field::density], b[field::density]));
+      const v8 hb     = _mm256_mul_ps(half, _mm256_add_ps(ab[1], bb[1]));
+      const v8 rho_ij = _mm256_mul_ps(half, _mm256_add_ps(ab[2], bb[2]));
       const v8 D      = _mm256_fmadd_ps(_mm256_set1_ps(0.01f), _mm256_mul_ps(hb, hb), r2);
       const v8 r2D    = _mm256_mul_ps(r2, D);
       const v8 z      = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_mul_ps(r2D, rho_ij));
@@ -147,11 +166,37 @@ namespace sph::pair_kernel::mixed
         for (int d = 0; d < 3; ++d)
           gw2 = _mm256_fmadd_ps(g[d], g[d], gw2);
         const v8 gw_r = _mm256_sqrt_ps(_mm256_mul_ps(gw2, r2));
-        s_av = _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(a[field::mass], b[field::mass]), pi),
+        s_av = _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(ab[3], bb[3]), pi),
                              _mm256_mul_ps(gw_r, inv_r2));
         // only approaching pairs (v_ij . x_ij < 0) at distinct positions
         s_av = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(vr, zero, _CMP_LT_OQ), r2_pos), s_av);
       }
+      // blocks 3 to 7: V, Q (9, column-major: Q(r, k) at 3 k + r), H (9, the same), one unused
+      v8 vv    = zero;
+      v8 qs[3] = {zero, zero, zero}; // sum_k (Q_i + Q_j)(r, k) g[k]
+      v8 y[3]  = {zero, zero, zero}; // sum_k (H_i + H_j)(r, k) X[k]
+#pragma GCC unroll 5
+      for (int blk = 12; blk < float_size; blk += 4)
+      {
+        a.block(blk, ab);
+        b.block(blk, bb);
+#pragma GCC unroll 4
+        for (int l = 0; l < 4; ++l)
+        {
+          const int e = blk + l - f::q; // position in the Q, H run
+          if (e == -1)
+            vv = _mm256_mul_ps(ab[l], bb[l]);
+          else if (e >= 0 && e < 9)
+            qs[e % 3] = _mm256_fmadd_ps(_mm256_add_ps(ab[l], bb[l]), g[e / 3], qs[e % 3]);
+          else if (e >= 9 && e < 18 && arg.hourglass)
+            y[(e - 9) % 3] =
+              _mm256_fmadd_ps(_mm256_add_ps(ab[l], bb[l]), dX[(e - 9) / 3], y[(e - 9) % 3]);
+        }
+      }
+      Lanes8 out;
+      // stress: f_i = V_i V_j (Q_i + Q_j) grad W_ij
+      for (int r = 0; r < 3; ++r)
+        out.force[r] = _mm256_mul_ps(vv, qs[r]);
       v8 s_hg = zero;
       if (arg.hourglass)
       {
@@ -159,14 +204,7 @@ namespace sph::pair_kernel::mixed
         // u_ij = x_ij + X); s_hg = -factor (e . x_ij) / r^2
         v8 e_dot = zero;
         for (int r = 0; r < 3; ++r)
-        {
-          v8 y = zero;
-          for (int k = 0; k < 3; ++k)
-            y = _mm256_fmadd_ps(
-              _mm256_add_ps(a[field::h_grad + 3 * k + r], b[field::h_grad + 3 * k + r]),
-              dX[k], y);
-          e_dot = _mm256_fmadd_ps(_mm256_fmadd_ps(half, y, uij[r]), xij[r], e_dot);
-        }
+          e_dot = _mm256_fmadd_ps(_mm256_fmadd_ps(half, y[r], uij[r]), xij[r], e_dot);
         s_hg = _mm256_and_ps(
           r2_pos, _mm256_mul_ps(_mm256_mul_ps(g[3], e_dot), _mm256_sub_ps(zero, inv_r2)));
       }
@@ -183,7 +221,6 @@ namespace sph::pair_kernel::mixed
                                                        const int n, const std::int32_t *first,
                                                        const std::int32_t *second, double *out)
   {
-    v8 la[float_size], lb[float_size];
     for (int k = 0; k < n; k += 8)
     {
       // a short last group repeats its last pair; only the real pairs' outputs are written
@@ -196,9 +233,8 @@ namespace sph::pair_kernel::mixed
       }
       v8 g[pair_size];
       pair_data(a.pair, p, g);
-      gather(a.record, i, la);
-      gather(a.record, j, lb);
-      const Lanes8 r = pair(a, la, lb, g);
+      const Gathered la(a.record, i), lb(a.record, j);
+      const Lanes8   r = pair(a, la, lb, g);
       // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its hourglass
       // power, in double (exact)
       v4 f_lo[3], f_hi[3], p_lo, p_hi, h_lo, h_hi;
@@ -226,8 +262,7 @@ namespace sph::pair_kernel::mixed
   particle_forces(const Args &a, const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
                   const std::int32_t *second, const std::int32_t e, double *f_int, double *sum)
   {
-    v8 la[float_size], lb[float_size];
-    broadcast(a.record, i, la);
+    const Broadcast la(a.record, i);
     const v4 zero = _mm256_setzero_pd();
     const __m256i lane_index = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     v4 acc[5]     = {zero, zero, zero, zero, zero};
@@ -248,8 +283,8 @@ namespace sph::pair_kernel::mixed
         pair_data_run(a.pair, k, g);
       else
         pair_data(a.pair, p, g);
-      gather(a.record, j, lb);
-      const Lanes8 r = pair(a, la, lb, g);
+      const Gathered lb(a.record, j);
+      const Lanes8   r = pair(a, la, lb, g);
       // the sums on i in double, lanes past pe masked
       const v8 out[5] = {r.force[0], r.force[1], r.force[2], r.power, r.hg_power};
       for (int c = 0; c < 5; ++c)

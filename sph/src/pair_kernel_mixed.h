@@ -23,16 +23,18 @@ namespace sph::pair_kernel::mixed
   {
     enum : int
     {
-      q          = 0,  ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
-      h_grad     = 9,  ///< H = F - I, column-major [-]
-      v          = 18, ///< velocity [m/s]
-      u          = 21, ///< displacement x - X [m]
-      x0         = 24, ///< reference position X minus the body's reference centre [m]
-      h          = 27, ///< smoothing length [m]
-      density    = 28, ///< [kg/m^3]
-      mass       = 29, ///< [kg]
-      volume     = 30, ///< V0 (TL) or V (UL) [m^3]
-      float_size = 32  ///< 128 bytes per particle, gathered in 8 blocks of 4
+      // in the order the pair force uses them (each block of four is transposed just before
+      // its use, so few lanes are live at once)
+      u          = 0,  ///< displacement x - X [m]
+      x0         = 3,  ///< reference position X minus the body's reference centre [m]
+      v          = 6,  ///< velocity [m/s]
+      h          = 9,  ///< smoothing length [m]
+      density    = 10, ///< [kg/m^3]
+      mass       = 11, ///< [kg]
+      volume     = 12, ///< V0 (TL) or V (UL) [m^3]
+      q          = 13, ///< Q = P L (TL) or sigma L (UL), column-major [Pa]
+      h_grad     = 22, ///< H = F - I, column-major [-]
+      float_size = 32  ///< 128 bytes per particle, read in 8 blocks of 4 (the last one padded)
     };
   } // namespace field
   using field::float_size;
