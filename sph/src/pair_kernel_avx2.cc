@@ -299,53 +299,45 @@ namespace sph::pair_kernel
       sum[c] = lane_sum(acc[c]);
   }
 
-  __attribute__((target("avx2,fma"))) void
-  particle_gradient(const double *position_volume, const double *grad_w, const float *pair_float,
-                    const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
-                    const std::int32_t *second, const std::int32_t e, double *a, double *own)
+  namespace
   {
-    const double *xi = position_volume + 4 * static_cast<std::int64_t>(i);
-    const v4 x_i[3]  = {_mm256_broadcast_sd(xi), _mm256_broadcast_sd(xi + 1),
-                        _mm256_broadcast_sd(xi + 2)};
-    const v4 V0i     = _mm256_broadcast_sd(xi + 3);
-    const v4 zero    = _mm256_setzero_pd();
-    v4 acc[9];
-    for (int k = 0; k < 9; ++k)
-      acc[k] = zero;
-    for (std::int32_t k = pb; k < pe; k += 4)
+    /// Gradients of the pairs k..k+3 from the float pair data (4 floats a pair: the gradient,
+    /// then the hourglass factor) as exact doubles, lanes = pairs; pairs from n_valid on repeat
+    /// the last one.
+    SPH_AVX2 void float_gradients(const float *pair_float, const std::int32_t k, const int n_valid,
+                                  v4 *g)
     {
-      Group gr = run_group(pair_float ? nullptr : grad_w, nullptr, second, k, pe);
-      if (pair_float)
+      v4           rows[4];
+      const float *r = pair_float + 4 * static_cast<std::int64_t>(k);
+      if (n_valid == 4) // 64 contiguous bytes
       {
-        // pair p's (g, factor) as four doubles (exact), transposed: lanes = pairs
-        v4 rows[4];
-        const float *r = pair_float + 4 * static_cast<std::int64_t>(k);
-        if (gr.n_valid == 4) // 64 contiguous bytes
-        {
-          const __m256 a01 = _mm256_loadu_ps(r), a23 = _mm256_loadu_ps(r + 8);
-          rows[0]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a01));
-          rows[1]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a01, 1));
-          rows[2]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a23));
-          rows[3]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a23, 1));
-        }
-        else
-          for (int l = 0; l < 4; ++l)
-            rows[l] = _mm256_cvtps_pd(_mm_loadu_ps(r + 4 * std::min(l, gr.n_valid - 1)));
-        v4 cols[4];
-        transpose(rows[0], rows[1], rows[2], rows[3], cols);
-        for (int d = 0; d < 3; ++d)
-          gr.g[d] = cols[d];
+        const __m256 a01 = _mm256_loadu_ps(r), a23 = _mm256_loadu_ps(r + 8);
+        rows[0]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a01));
+        rows[1]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a01, 1));
+        rows[2]          = _mm256_cvtps_pd(_mm256_castps256_ps128(a23));
+        rows[3]          = _mm256_cvtps_pd(_mm256_extractf128_ps(a23, 1));
       }
-      const std::int32_t *j = gr.j;
-      const v4 *g           = gr.g;
-      const v4 valid        = gr.valid;
-      const int n_valid     = gr.n_valid;
+      else
+        for (int l = 0; l < 4; ++l)
+          rows[l] = _mm256_cvtps_pd(_mm_loadu_ps(r + 4 * std::min(l, n_valid - 1)));
+      v4 cols[4];
+      transpose(rows[0], rows[1], rows[2], rows[3], cols);
+      for (int d = 0; d < 3; ++d)
+        g[d] = cols[d];
+    }
+
+    /// One group of four pairs of particle i (position x_i, volume V0i) in particle_gradient:
+    /// second particles j[0..3], gradients g; lanes from n_valid on repeat the last pair: masked
+    /// out of i's sums (valid) and not scattered.
+    SPH_AVX2 void gradient_group(const double *position_volume, const v4 *x_i, const v4 V0i,
+                                 const std::int32_t *j, const v4 *g, const v4 valid,
+                                 const int n_valid, const std::int32_t e, double *a, v4 *acc)
+    {
       v4 xv[4]; // x, y, z, V0 of the four j
       transpose_load(position_volume + 4 * static_cast<std::int64_t>(j[0]),
                      position_volume + 4 * static_cast<std::int64_t>(j[1]),
                      position_volume + 4 * static_cast<std::int64_t>(j[2]),
                      position_volume + 4 * static_cast<std::int64_t>(j[3]), xv);
-      // lanes past pe repeat the last pair: they add nothing and are not scattered
       v4 di[3], dj[3];
       for (int r = 0; r < 3; ++r)
       {
@@ -361,21 +353,64 @@ namespace sph::pair_kernel
           acc[3 * cc + r] = _mm256_fmadd_pd(di[r], g[cc], acc[3 * cc + r]);
           t[3 * cc + r]   = _mm256_mul_pd(dj[r], g[cc]);
         }
-      v4 lo[4], hi[4];
+      v4 lo[4], hi[4], last[4];
       transpose(t[0], t[1], t[2], t[3], lo); // lo[m]: entries 0..3 of pair m
       transpose(t[4], t[5], t[6], t[7], hi); // hi[m]: entries 4..7
-      alignas(32) double last[4];
-      _mm256_store_pd(last, t[8]);
+      const v4 zero = _mm256_setzero_pd();
+      transpose(t[8], zero, zero, zero, last); // last[m]: (entry 8 of pair m, 0, 0, 0)
       for (int m = 0; m < n_valid; ++m)
-        if (j[m] < e) // else: added by j's owner (cross-range share)
+      {
+        double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
+        if (j[m] < e - 1)
         {
-          double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
+          // entries 8..11: the last of j's and 0 added to the first three of j + 1 (x + 0 = x
+          // for every double; j + 1 < e is this range's: j > i)
           _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
           _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));
-          aj[8] += last[m];
+          _mm256_storeu_pd(aj + 8, _mm256_add_pd(_mm256_loadu_pd(aj + 8), last[m]));
         }
+        else if (j[m] == e - 1) // j >= e: added by j's owner (cross-range share)
+        {
+          _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
+          _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));
+          aj[8] += _mm256_cvtsd_f64(last[m]);
+        }
+      }
     }
+  } // namespace
+
+  __attribute__((target("avx2,fma"))) void
+  particle_gradient(const double *position_volume, const double *grad_w, const float *pair_float,
+                    const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
+                    const std::int32_t *second, const std::int32_t e, double *a, double *own)
+  {
+    const double *xi = position_volume + 4 * static_cast<std::int64_t>(i);
+    const v4 x_i[3]  = {_mm256_broadcast_sd(xi), _mm256_broadcast_sd(xi + 1),
+                        _mm256_broadcast_sd(xi + 2)};
+    const v4 V0i     = _mm256_broadcast_sd(xi + 3);
+    const v4 zero    = _mm256_setzero_pd();
+    const v4 all     = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    v4 acc[9];
     for (int k = 0; k < 9; ++k)
-      own[k] = lane_sum(acc[k]);
+      acc[k] = zero;
+    std::int32_t k = pb;
+    for (; k + 4 <= pe; k += 4) // whole groups: contiguous loads, no masks
+    {
+      v4 g[3];
+      if (pair_float)
+        float_gradients(pair_float, k, 4, g);
+      else
+        pair_vectors_run(grad_w, k, g);
+      gradient_group(position_volume, x_i, V0i, second + k, g, all, 4, e, a, acc);
+    }
+    if (k < pe) // the last, short group
+    {
+      Group gr = run_group(pair_float ? nullptr : grad_w, nullptr, second, k, pe);
+      if (pair_float)
+        float_gradients(pair_float, k, gr.n_valid, gr.g);
+      gradient_group(position_volume, x_i, V0i, gr.j, gr.g, gr.valid, gr.n_valid, e, a, acc);
+    }
+    for (int c = 0; c < 9; ++c)
+      own[c] = lane_sum(acc[c]);
   }
 } // namespace sph::pair_kernel
