@@ -575,16 +575,11 @@ namespace sph
                   // first Piola-Kirchhoff P = J sigma F^{-T} = sigma cof(F)
                   const Tensor<dim> P = up.stress.template topLeftCorner<dim, dim>() * C;
                   Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
-                  // the pair force's record while i's data are in cache (x and v do not
-                  // change before pair_forces reads it)
-                  if (simd)
-                    pack_records(i, i + 1);
                 }
             }
         }
       },
       model_);
-    records_packed_ = simd_;
   }
 
   template <int dim>
@@ -749,9 +744,6 @@ namespace sph
     args.c         = c;
     args.av        = av;
     const bool          mixed = mixed_;
-    // packed by the total-Lagrangian stress update of this compute_forces (else: here)
-    const bool records_packed = records_packed_;
-    records_packed_           = false;
     pair_kernel::mixed::Args margs;
     margs.record    = frecord_.data();
     margs.pair      = pair_float_.data();
@@ -763,7 +755,7 @@ namespace sph
 #pragma omp parallel num_threads(n_threads_)
     {
       const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
-      if (simd && !records_packed)
+      if (simd)
         {
           for (int t = t0; t < n_threads_; t += nt)
             pack_records(range_begin_[t], range_begin_[t + 1]);

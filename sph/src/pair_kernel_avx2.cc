@@ -276,19 +276,11 @@ namespace sph::pair_kernel
         acc[d] = _mm256_add_pd(acc[d], _mm256_and_pd(gr.valid, r.force[d]));
       acc[3] = _mm256_add_pd(acc[3], _mm256_and_pd(gr.valid, r.power));
       acc[4] = _mm256_add_pd(acc[4], _mm256_and_pd(gr.valid, r.hg_power));
-      // minus the force on each second particle j < e, pair by pair (ascending p). f[m] is
-      // (force, 0): below the range's last particle one 4-wide subtraction also takes 0 from
-      // particle j + 1's first entry, which leaves it unchanged (x - 0 = x for every double)
-      // and belongs to this thread (j + 1 < e)
+      // minus the force on each second particle j < e, pair by pair (ascending p)
       v4 f[4];
       transpose(r.force[0], r.force[1], r.force[2], zero, f);
       for (int m = 0; m < gr.n_valid; ++m)
-        if (gr.j[m] < e - 1)
-        {
-          double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
-          _mm256_storeu_pd(fj, _mm256_sub_pd(_mm256_loadu_pd(fj), f[m]));
-        }
-        else if (gr.j[m] == e - 1) // j < e; j >= e: subtracted by j's owner (cross-range share)
+        if (gr.j[m] < e) // j >= e: subtracted by j's owner (cross-range share)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
@@ -361,15 +353,7 @@ namespace sph::pair_kernel
       for (int m = 0; m < n_valid; ++m)
       {
         double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
-        if (j[m] < e - 1)
-        {
-          // entries 8..11: the last of j's and 0 added to the first three of j + 1 (x + 0 = x
-          // for every double; j + 1 < e is this range's: j > i)
-          _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
-          _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));
-          _mm256_storeu_pd(aj + 8, _mm256_add_pd(_mm256_loadu_pd(aj + 8), last[m]));
-        }
-        else if (j[m] == e - 1) // j >= e: added by j's owner (cross-range share)
+        if (j[m] < e) // j >= e: added by j's owner (cross-range share)
         {
           _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
           _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));

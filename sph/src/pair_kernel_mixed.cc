@@ -300,15 +300,8 @@ namespace sph::pair_kernel::mixed
       v4 f[8];
       transpose(f_lo[0], f_lo[1], f_lo[2], zero, f);
       transpose(f_hi[0], f_hi[1], f_hi[2], zero, f + 4);
-      // (below the range's last particle one 4-wide subtraction of (force, 0), as in
-      // pair_kernel_avx2.cc: particle j + 1's first entry minus 0 is unchanged)
       for (int m = 0; m < n_valid; ++m)
-        if (j[m] < e - 1)
-        {
-          double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
-          _mm256_storeu_pd(fj, _mm256_sub_pd(_mm256_loadu_pd(fj), f[m]));
-        }
-        else if (j[m] == e - 1) // j < e; j >= e: subtracted by j's owner (cross-range share)
+        if (j[m] < e) // j >= e: subtracted by j's owner (cross-range share)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));

@@ -244,7 +244,6 @@ namespace sph
     // simd_ and Parameters::single_precision: the mixed-precision pair force of
     // src/pair_kernel_mixed.h, which reads a float record per particle and per pair
     bool                mixed_ = false;
-    bool records_packed_ = false; // the records are current (set by the TL stress update)
     std::vector<float>  frecord_;    // per particle: mixed::float_size floats (mixed_ only)
     std::vector<float>  pair_float_; // per pair: grad W and hourglass factor (mixed_ only)
     Vector<dim>         centre0_ = Vector<dim>::Zero(); // reference bounding-box centre [m]
