@@ -15,22 +15,29 @@ namespace sph::pair_kernel::mixed
     using avx2::v4;
     using v8 = __m256;
 
-    /// Floats b..b+3 of the eight rows r[0..7] as lanes: out[k] = (r[0][b + k], .., r[7][b + k]).
-    /// Eight 16-byte loads, two per register, and a 4 x 4 transpose inside each 128-bit half.
-    SPH_AVX2 void transpose_block(const float *const *r, const int b, v8 *out)
+    /// out[k] = float k of each 128-bit half of t[0..3], t[m] holding row m (low half) and row
+    /// m + 4 (high half): a 4 x 4 transpose inside each half.
+    SPH_AVX2 void transpose_halves(const v8 *t, v8 *out)
     {
-      v8 t[4]; // t[k] = floats b..b+3 of row k (low half) and of row k + 4 (high half)
-      for (int k = 0; k < 4; ++k)
-        t[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(r[k] + b)),
-                                    _mm_loadu_ps(r[k + 4] + b), 1);
-      const v8 u0 = _mm256_unpacklo_ps(t[0], t[1]); // b of 0 1, b+1 of 0 1 | the same of 4 5
-      const v8 u1 = _mm256_unpackhi_ps(t[0], t[1]); // b+2 of 0 1, b+3 of 0 1 | ..
+      const v8 u0 = _mm256_unpacklo_ps(t[0], t[1]); // 0 of rows 0 1, 1 of rows 0 1 | rows 4 5
+      const v8 u1 = _mm256_unpackhi_ps(t[0], t[1]); // 2 of rows 0 1, 3 of rows 0 1 | ..
       const v8 u2 = _mm256_unpacklo_ps(t[2], t[3]);
       const v8 u3 = _mm256_unpackhi_ps(t[2], t[3]);
       out[0]      = _mm256_shuffle_ps(u0, u2, 0x44);
       out[1]      = _mm256_shuffle_ps(u0, u2, 0xEE);
       out[2]      = _mm256_shuffle_ps(u1, u3, 0x44);
       out[3]      = _mm256_shuffle_ps(u1, u3, 0xEE);
+    }
+
+    /// Floats b..b+3 of the eight rows r[0..7] as lanes: out[k] = (r[0][b + k], .., r[7][b + k]).
+    /// Eight 16-byte loads, two per register, and transpose_halves.
+    SPH_AVX2 void transpose_block(const float *const *r, const int b, v8 *out)
+    {
+      v8 t[4]; // t[k] = floats b..b+3 of row k (low half) and of row k + 4 (high half)
+      for (int k = 0; k < 4; ++k)
+        t[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(r[k] + b)),
+                                    _mm_loadu_ps(r[k + 4] + b), 1);
+      transpose_halves(t, out);
     }
 
     /// One particle's record in every lane.
@@ -60,14 +67,7 @@ namespace sph::pair_kernel::mixed
       t[1]        = _mm256_permute2f128_ps(a0, a2, 0x31);
       t[2]        = _mm256_permute2f128_ps(a1, a3, 0x20);
       t[3]        = _mm256_permute2f128_ps(a1, a3, 0x31);
-      const v8 u0 = _mm256_unpacklo_ps(t[0], t[1]);
-      const v8 u1 = _mm256_unpackhi_ps(t[0], t[1]);
-      const v8 u2 = _mm256_unpacklo_ps(t[2], t[3]);
-      const v8 u3 = _mm256_unpackhi_ps(t[2], t[3]);
-      g[0]        = _mm256_shuffle_ps(u0, u2, 0x44);
-      g[1]        = _mm256_shuffle_ps(u0, u2, 0xEE);
-      g[2]        = _mm256_shuffle_ps(u1, u3, 0x44);
-      g[3]        = _mm256_shuffle_ps(u1, u3, 0xEE);
+      transpose_halves(t, g);
     }
 
     /// Per-pair data of eight pairs: g[0..2] = grad_i W_ij, g[3] = hourglass factor.

@@ -46,6 +46,30 @@ namespace
     body.compute_forces();
   }
 
+  /// A weak Mohr-Coulomb rock (c = 1 MPa, phi = 0.5 rad): a few steps of flow yield it.
+  MaterialParameters weak_mohr_coulomb()
+  {
+    MaterialParameters m = elastic_rock();
+    m.model              = RockModel::mohr_coulomb;
+    m.cohesion           = 1e6;
+    m.friction_angle     = 0.5;
+    return m;
+  }
+
+  /// Largest |a_i - b_i| over the particles; scale: the largest |b_i|.
+  double largest_difference(const std::vector<Vector<3>> &a, const std::vector<Vector<3>> &b,
+                            double &scale)
+  {
+    double worst = 0;
+    scale        = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        scale = std::max(scale, b[i].norm());
+        worst = std::max(worst, (a[i] - b[i]).norm());
+      }
+    return worst;
+  }
+
   TEST(SphCorrection, LinearFieldGradientExactEverywhereTotalLagrangian)
   {
     // With renormalised gradients, F of an affine motion is exact at every particle, surface and
@@ -165,10 +189,7 @@ namespace
             p.n_threads          = threads;
             p.vectorised         = vectorised;
             p.single_precision   = single;
-            MaterialParameters m = elastic_rock();
-            m.model              = RockModel::mohr_coulomb;
-            m.cohesion           = 1e6;
-            m.friction_angle     = 0.5;
+            const MaterialParameters m = weak_mohr_coulomb();
             Body<3> body(p, m, lat.positions, lat.volumes);
             for (unsigned i = 0; i < body.n_particles(); ++i)
               if (body.positions()[i][2] > 0.019)
@@ -209,10 +230,7 @@ namespace
             p.vectorised         = vectorised;
             p.single_precision   = false; // the double kernel (the mixed one: the next test)
             p.n_threads          = 2;
-            MaterialParameters m = elastic_rock();
-            m.model              = RockModel::mohr_coulomb;
-            m.cohesion           = 1e6;
-            m.friction_angle     = 0.5;
+            const MaterialParameters m = weak_mohr_coulomb();
             Body<3> body(p, m, lat.positions, lat.volumes);
             if (vectorised && !body.vectorised())
               GTEST_SKIP() << "this CPU has no AVX2: only the scalar pair force runs here";
@@ -230,12 +248,8 @@ namespace
             force.push_back(body.internal_forces());
             energy.push_back(body.energies());
           }
-        double scale = 0, worst = 0;
-        for (std::size_t i = 0; i < force[0].size(); ++i)
-          {
-            scale = std::max(scale, force[1][i].norm());
-            worst = std::max(worst, (force[0][i] - force[1][i]).norm());
-          }
+        double       scale = 0;
+        const double worst = largest_difference(force[0], force[1], scale);
         ASSERT_GT(scale, 0.0) << "the state must be loaded, or the test proves nothing";
         EXPECT_LT(worst, 1e-9 * scale) << "FORM " << static_cast<int>(form);
         // viscous and hourglass work of the three steps: sums of ~10^5 pair powers each
@@ -262,10 +276,7 @@ namespace
         const Lattice<3> lat = make_cylinder<3>(0.01, 0.02, 0.001);
         Parameters       p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
         p.single_precision   = single;
-        MaterialParameters m = elastic_rock();
-        m.model              = RockModel::mohr_coulomb;
-        m.cohesion           = 1e6;
-        m.friction_angle     = 0.5;
+        const MaterialParameters m = weak_mohr_coulomb();
         Body<3> body(p, m, lat.positions, lat.volumes);
         if (!body.vectorised())
           GTEST_SKIP() << "this CPU has no AVX2: there is no mixed-precision pair force";
@@ -286,12 +297,8 @@ namespace
         body.compute_forces();
         force.push_back(body.internal_forces());
       }
-    double scale = 0, worst = 0;
-    for (std::size_t i = 0; i < force[0].size(); ++i)
-      {
-        scale = std::max(scale, force[1][i].norm());
-        worst = std::max(worst, (force[0][i] - force[1][i]).norm());
-      }
+    double       scale = 0;
+    const double worst = largest_difference(force[0], force[1], scale);
     ASSERT_GT(scale, 0.0) << "the state must be loaded, or the test proves nothing";
     std::printf("mixed against double precision: worst force difference %.3g of the largest\n",
                 worst / scale);
