@@ -19,7 +19,14 @@ int main(int argc, char **argv)
   const double dx      = argc > 1 ? std::atof(argv[1]) : 1.2e-3;
   const int    n_steps = argc > 2 ? std::atoi(argv[2]) : 200;
   const int    threads = argc > 3 ? std::atoi(argv[3]) : 0;
-  const bool   single  = argc > 4 ? std::string(argv[4]) != "double" : true;
+  const std::string precision = argc > 4 ? argv[4] : "mixed";
+  if (precision != "mixed" && precision != "double")
+    {
+      std::fprintf(stderr, "sph_bench: pair force precision '%s' is not one of mixed, double\n",
+                   precision.c_str());
+      return 2;
+    }
+  const bool single = precision == "mixed";
 
   sph::Parameters prm;
   prm.spacing   = dx;

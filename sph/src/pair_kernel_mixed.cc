@@ -55,6 +55,15 @@ namespace sph::pair_kernel::mixed
       hi = _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1));
     }
 
+    /// Per-pair data of eight pairs: g[0..2] = grad_i W_ij, g[3] = hourglass factor.
+    SPH_AVX2 void pair_data(const float *pair, const std::int32_t *p, v8 *g)
+    {
+      const float *r[8];
+      for (int l = 0; l < 8; ++l)
+        r[l] = pair + pair_size * static_cast<std::int64_t>(p[l]);
+      transpose_block(r, 0, g);
+    }
+
     /// The same for the eight consecutive pairs k..k+7: four 32-byte loads and the same
     /// transpose (the same values as pair_data).
     SPH_AVX2 void pair_data_run(const float *pair, const std::int32_t k, v8 *g)
@@ -68,15 +77,6 @@ namespace sph::pair_kernel::mixed
       t[2]        = _mm256_permute2f128_ps(a1, a3, 0x20);
       t[3]        = _mm256_permute2f128_ps(a1, a3, 0x31);
       transpose_halves(t, g);
-    }
-
-    /// Per-pair data of eight pairs: g[0..2] = grad_i W_ij, g[3] = hourglass factor.
-    SPH_AVX2 void pair_data(const float *pair, const std::int32_t *p, v8 *g)
-    {
-      const float *r[8];
-      for (int l = 0; l < 8; ++l)
-        r[l] = pair + pair_size * static_cast<std::int64_t>(p[l]);
-      transpose_block(r, 0, g);
     }
 
     /// What pair() gives for eight pairs, in lanes.

@@ -306,6 +306,22 @@ namespace
     EXPECT_GT(worst, 0.0) << "the two kernels must differ, or the mixed one did not run";
   }
 
+  TEST(SphBody, MixedPrecisionOnlyFromATenthOfAMillimetre)
+  {
+    // |grad W|^2 ~ 0.06 / h^8 leaves the float range (3.4e38) below h ~ 2e-5 m: under a spacing
+    // of 0.1 mm the body keeps the double pair force (Parameters::single_precision's rule)
+    for (const double dx : {1e-4, 5e-5})
+      {
+        const Lattice<3> lat =
+          make_block<3>(Vector<3>::Zero(), Vector<3>::Constant(6 * dx), dx);
+        Body<3> body(numerics(Formulation::total_lagrangian_corrected, dx), elastic_rock(),
+                     lat.positions, lat.volumes);
+        if (!body.vectorised())
+          GTEST_SKIP() << "this CPU has no AVX2: there is no mixed-precision pair force";
+        EXPECT_EQ(dx >= 1e-4, body.single_precision()) << "spacing " << dx;
+      }
+  }
+
   TEST(SphPressure, UniformPressureOnBlock)
   {
     // the area vectors of a closed body sum to zero by pair antisymmetry (round-off), and those
