@@ -3,16 +3,21 @@
 
 Usage: thread_study.py SPH_BENCH OUT_DIR [ROUNDS=8] [STEPS=40] [SPACING=0.00125]
 
-Each round runs, one after the other (OMP_WAIT_POLICY=passive, so CPU time is work, not spinning):
-  one     1 thread, 1 range: the per-core rate;
-  two     2 threads, 2 ranges: the speed-up (wall of `one` / wall of `two`, paired per round);
-  ranges  2 ranges on 1 thread (OMP_THREAD_LIMIT=1): the cost of the 2-thread decomposition
-          itself (cross-range pairs, extra passes), free of any contention between cores;
-  pair    two 1-thread runs at once, as separate processes: what the machine's two cores cost
-          each other (shared memory path, co-tenants) with no shared data and no barriers.
-The CPU ratios two/one, ranges/one and pair/one split the second thread's loss into the code's
-part (ranges), the machine's part (pair) and the rest (threads of one process: barriers, cache
-lines shared across cores). Writes OUT_DIR/threads.csv (every run) and threads_summary.txt.
+Each round runs, one after the other:
+  one      1 thread, 1 range: the per-core rate;
+  two      2 threads, 2 ranges, OpenMP's default wait policy (what cosim runs with: a waiting
+           thread spins a while, then sleeps): the speed-up, wall of `one` / wall of `two`,
+           paired per round;
+  passive  the same with OMP_WAIT_POLICY=passive: a thread that waits at a barrier sleeps
+           instead of spinning, so its CPU time is its work;
+  ranges   2 ranges on 1 thread (OMP_THREAD_LIMIT=1): the cost of the 2-thread decomposition
+           itself (cross-range pairs, extra passes), free of any contention between cores;
+  pair     two 1-thread runs at once, as separate processes: what the machine's two cores cost
+           each other (shared memory path, co-tenants) with no shared data and no barriers.
+Runs other than `two` use OMP_WAIT_POLICY=passive (CPU time = work). The CPU ratios
+passive/one, ranges/one and pair/one split the second thread's loss into the code's part
+(ranges), the machine's part (pair) and the rest (threads of one process). Writes
+OUT_DIR/threads.csv (every run) and threads_summary.txt.
 
 Rates are particle-steps per CPU second (one) and per wall second (two). Medians and the best
 run are both given: on a shared VM the noise only ever slows a run down, so the best of the
@@ -25,9 +30,10 @@ import sys
 
 
 def run(bench, spacing, steps, threads, extra_env=None, background=False):
-    env = dict(os.environ, OMP_WAIT_POLICY="passive")
-    env.pop("OMP_THREAD_LIMIT", None)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMP_", "GOMP_"))}
+    env["OMP_WAIT_POLICY"] = "passive"
     env.update(extra_env or {})
+    env = {k: v for k, v in env.items() if v is not None}
     cmd = [bench, spacing, str(steps), str(threads)]
     if background:
         return subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, env=env)
@@ -68,17 +74,19 @@ def main():
     checksums = set()
     for k in range(rounds):
         one = run(bench, spacing, steps, 1)
-        two = run(bench, spacing, steps, 2)
+        two = run(bench, spacing, steps, 2, {"OMP_WAIT_POLICY": None})
+        passive = run(bench, spacing, steps, 2)
         ranges = run(bench, spacing, steps, 2, {"OMP_THREAD_LIMIT": "1"})
         procs = [run(bench, spacing, steps, 1, background=True) for _ in range(2)]
         pair = [parse(p.communicate()[0]) for p in procs]
-        for name, r in (("one", one), ("two", two), ("ranges", ranges),
+        for name, r in (("one", one), ("two", two), ("passive", passive), ("ranges", ranges),
                         ("pair_a", pair[0]), ("pair_b", pair[1])):
             rows.append((k, name, r["wall"], r["cpu"]))
             checksums.add(r["checksum"])
-        print("round %d: one %.2f s | two %.2f s wall, %.2f CPU s | ranges %.2f CPU s | "
-              "pair %.2f %.2f CPU s" % (k, one["wall"], two["wall"], two["cpu"], ranges["cpu"],
-                                        pair[0]["cpu"], pair[1]["cpu"]), flush=True)
+        print("round %d: one %.2f s | two %.2f s wall | passive %.2f s wall, %.2f CPU s | "
+              "ranges %.2f CPU s | pair %.2f %.2f CPU s"
+              % (k, one["wall"], two["wall"], passive["wall"], passive["cpu"], ranges["cpu"],
+                 pair[0]["cpu"], pair[1]["cpu"]), flush=True)
     n = one["particles"] * steps
 
     def col(name, key):
@@ -90,23 +98,25 @@ def main():
     by = {(r[0], r[1]): r for r in rows}
     one_cpu, one_wall, two_wall = col("one", "cpu"), col("one", "wall"), col("two", "wall")
     lines = [
-        "sph_bench %s %d T: %d particles, %d interleaved rounds, OMP_WAIT_POLICY=passive"
+        "sph_bench %s %d T: %d particles, %d interleaved rounds"
         % (spacing, steps, one["particles"], rounds),
         "results bitwise equal in every variant: %s" % ("yes" if len(checksums) == 1 else "NO"),
         "1 thread, particle-steps per CPU s: median %.3g, best %.3g (quartiles %.3g .. %.3g)"
         % (n / statistics.median(one_cpu), n / min(one_cpu),
            n / statistics.quantiles(one_cpu, n=4)[2], n / statistics.quantiles(one_cpu, n=4)[0]),
-        "2 threads, particle-steps per wall s: median %.3g, best %.3g"
+        "2 threads (default wait policy), particle-steps per wall s: median %.3g, best %.3g"
         % (n / statistics.median(two_wall), n / min(two_wall)),
         "speed-up 2 threads / 1 thread: median of paired rounds %.2f, of the best runs %.2f"
         % (paired(lambda k: by[(k, "one")][2] / by[(k, "two")][2]), min(one_wall) / min(two_wall)),
+        "  with OMP_WAIT_POLICY=passive: median of paired rounds %.2f"
+        % paired(lambda k: by[(k, "one")][2] / by[(k, "passive")][2]),
         "CPU time / 1 thread (medians of paired rounds):",
         "  2 ranges on 1 thread (the decomposition)       %.3f"
         % paired(lambda k: by[(k, "ranges")][3] / by[(k, "one")][3]),
         "  two 1-thread processes at once (the machine)   %.3f"
         % paired(lambda k: 0.5 * (by[(k, "pair_a")][3] + by[(k, "pair_b")][3]) / by[(k, "one")][3]),
-        "  2 threads of one process                       %.3f"
-        % paired(lambda k: by[(k, "two")][3] / by[(k, "one")][3]),
+        "  2 threads of one process (passive wait)        %.3f"
+        % paired(lambda k: by[(k, "passive")][3] / by[(k, "one")][3]),
     ]
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "threads.csv"), "w") as f:
