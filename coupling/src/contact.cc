@@ -2,6 +2,8 @@
 // The V3 / std::array brace initialisers are intended; deal.II's flags turn -Wmissing-braces on.
 #pragma GCC diagnostic ignored "-Wmissing-braces"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -57,8 +59,6 @@ namespace coupling
   PenaltyContact::PenaltyContact(const ContactParameters &parameters, std::size_t n_particles)
       : prm_(parameters)
       , friction_(n_particles)
-      , hits_(n_particles)
-      , particle_force_(n_particles)
   {}
 
   void PenaltyContact::find_interior_edges(const ContactSurface &s)
@@ -298,23 +298,31 @@ namespace coupling
     double fn_sum = 0, energy = 0, dissipated = 0;
     std::size_t n_contact = 0, n_slide = 0;
 
-    // Gather: each particle finds its face and its force independently (no shared writes).
-    // The floating-point sums are taken afterwards in particle order: an OpenMP reduction
-    // combines the threads' partial sums in arrival order, which is not reproducible bitwise.
-#pragma omp parallel for schedule(static) reduction(+ : n_contact, n_slide)
-    for (long i = 0; i < n; ++i)
+    // Gather: each particle finds its face and its force independently (no shared writes);
+    // each thread keeps the contacts of its contiguous chunk. The floating-point sums are taken
+    // afterwards in particle order: an OpenMP reduction combines the threads' partial sums in
+    // arrival order, which is not reproducible bitwise.
+    const std::size_t max_threads = static_cast<std::size_t>(omp_get_max_threads());
+    if (contacts_.size() < max_threads)
+      contacts_.resize(max_threads);
+    for (auto &list : contacts_)
+      list.clear();
+#pragma omp parallel reduction(+ : n_contact, n_slide)
     {
-      Hit hit           = find_face(pt.position + 3 * i, s);
-      const double k    = stiffness_factor_.empty() ? k0 : k0 * stiffness_factor_[i];
-      FrictionState &fr = friction_[i];
-      std::array<double, 3> f{0, 0, 0};
-      if (hit.face < 0 || hit.gap >= 0)
+      const long t = omp_get_thread_num(), nt = omp_get_num_threads();
+      std::vector<Contact> &mine = contacts_[t];
+      for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
-        fr       = FrictionState{};
-        hit.face = -1;
-      }
-      else
-      {
+        Hit hit           = find_face(pt.position + 3 * i, s);
+        FrictionState &fr = friction_[i];
+        if (hit.face < 0 || hit.gap >= 0)
+        {
+          if (fr.sliding || fr.tangential_force != V3{0, 0, 0}) // written only when set
+            fr = FrictionState{};
+          continue;
+        }
+        const double k = stiffness_factor_.empty() ? k0 : k0 * stiffness_factor_[i];
+        std::array<double, 3> f{0, 0, 0};
         ++n_contact;
         const double fn  = -k * hit.gap;
         hit.normal_force = fn;
@@ -358,30 +366,29 @@ namespace coupling
         }
         for (int d = 0; d < 3; ++d)
           f[d] = fn * nrm[d] + ft[d];
+        mine.push_back({static_cast<std::int32_t>(i), hit, f});
       }
-      hits_[i]           = hit;
-      particle_force_[i] = f;
     }
 
+
     // Scatter in particle order: deterministic, and each force applied once to each side.
-    for (long i = 0; i < n; ++i)
-    {
-      const Hit &hit = hits_[i];
-      if (hit.face < 0)
-        continue;
-      fn_sum += hit.normal_force;
-      energy += hit.energy;
-      dissipated += hit.dissipated;
-      const auto &f = particle_force_[i];
-      for (int d = 0; d < 3; ++d)
-        force_on_particles[3 * i + d] += f[d];
-      for (int a = 0; a < 4; ++a)
+    for (const auto &list : contacts_)
+      for (const Contact &c : list)
       {
-        const unsigned int node_id = s.faces[hit.face][a];
+        const Hit &hit = c.hit;
+        fn_sum += hit.normal_force;
+        energy += hit.energy;
+        dissipated += hit.dissipated;
+        const auto &f = c.force;
         for (int d = 0; d < 3; ++d)
-          force_on_nodes[3 * node_id + d] -= hit.weight[a] * f[d];
+          force_on_particles[3 * c.particle + d] += f[d];
+        for (int a = 0; a < 4; ++a)
+        {
+          const unsigned int node_id = s.faces[hit.face][a];
+          for (int d = 0; d < 3; ++d)
+            force_on_nodes[3 * node_id + d] -= hit.weight[a] * f[d];
+        }
       }
-    }
     normal_force_   = fn_sum;
     penalty_energy_ = energy;
     friction_dissipation_ += dissipated;

@@ -9,6 +9,7 @@
 /// the forces on rock and platen cancel to round-off.
 
 #include <array>
+#include <cstdint>
 #include <cstddef>
 #include <utility>
 #include <map>
@@ -147,8 +148,17 @@ namespace coupling
     ContactParameters prm_;
     std::vector<FrictionState> friction_;
     std::vector<double> stiffness_factor_;
-    std::vector<Hit> hits_;
-    std::vector<std::array<double, 3>> particle_force_;
+    /// A particle in contact in this apply(): its face, its force on the particle [N].
+    struct Contact
+    {
+      std::int32_t particle;
+      Hit hit;
+      std::array<double, 3> force;
+    };
+    /// Per thread: the contacts found in its chunk of particles (contiguous chunks in thread
+    /// order, so the lists end to end are in particle order). Only the few particles near the
+    /// platen are stored, not a record per particle.
+    std::vector<std::vector<Contact>> contacts_;
     // uniform grid of face bounding boxes
     std::array<double, 3> grid_origin_{};
     double grid_cell_ = 1.0;
