@@ -11,6 +11,8 @@
 #include <sph/body.h>
 #include <sph/lattice.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -612,32 +614,71 @@ namespace coupling
     const std::string too_large =
       "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
       "near 1) or a loading rate far above quasi-static";
+    // one pass over the particles, a contiguous chunk per thread; the chunks' results are
+    // combined in chunk order, so the first bad particle, the fastest one and the one with the
+    // smallest step are the lowest-index ones, as in a serial loop, and the kinetic energy is the
+    // same for a given thread count
+    struct Scan
+    {
+      long bad = -1;              // first particle that is non-finite or out of the domain
+      bool bad_finite = true;     // ... and whether it was finite (then: out of the domain)
+      double kinetic = 0, dt_min = 1e300, v_max = 0;
+      unsigned int i_dt = 0, i_v = 0;
+    };
+    std::vector<Scan> scans(static_cast<std::size_t>(omp_get_max_threads()));
+#pragma omp parallel
+    {
+      const long t = omp_get_thread_num(), nt = omp_get_num_threads();
+      Scan &r      = scans[t];
+      for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
+      {
+        const auto &s3 = body_->stress3(i);
+        const bool finite =
+          std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
+          std::isfinite(s3.sum() + h[i]);
+        if (!finite || !(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
+                         std::abs(x[i][2]) < domain_size_))
+        {
+          r.bad        = i;
+          r.bad_finite = finite;
+          break;
+        }
+        const double speed = v[i].norm();
+        r.kinetic += 0.5 * m[i] * speed * speed;
+        if (speed > r.v_max)
+        {
+          r.v_max = speed;
+          r.i_v   = static_cast<unsigned int>(i);
+        }
+        const double dt_i = h[i] / (c + speed);
+        if (dt_i < r.dt_min)
+        {
+          r.dt_min = dt_i;
+          r.i_dt   = static_cast<unsigned int>(i);
+        }
+      }
+    }
     double kinetic = 0, dt_min = 1e300, v_max = 0;
     unsigned int i_dt = 0, i_v = 0;
-    for (unsigned int i = 0; i < n; ++i)
+    for (const Scan &r : scans)
     {
-      const auto &t = body_->stress3(i);
-      const bool finite =
-        std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
-        std::isfinite(t.sum() + h[i]);
-      if (!finite)
-        fail("non-finite position, velocity, stress or smoothing length", i, too_large);
-      if (!(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
-            std::abs(x[i][2]) < domain_size_))
-        fail("a particle left the domain (|x| >= " + std::to_string(domain_size_) + " m)", i,
+      if (r.bad >= 0)
+      {
+        if (!r.bad_finite)
+          fail("non-finite position, velocity, stress or smoothing length", r.bad, too_large);
+        fail("a particle left the domain (|x| >= " + std::to_string(domain_size_) + " m)", r.bad,
              too_large + ", or a platen that lost contact");
-      const double speed = v[i].norm();
-      kinetic += 0.5 * m[i] * speed * speed;
-      if (speed > v_max)
-      {
-        v_max = speed;
-        i_v   = i;
       }
-      const double dt_i = h[i] / (c + speed);
-      if (dt_i < dt_min)
+      kinetic += r.kinetic;
+      if (r.v_max > v_max)
       {
-        dt_min = dt_i;
-        i_dt   = i;
+        v_max = r.v_max;
+        i_v   = r.i_v;
+      }
+      if (r.dt_min < dt_min)
+      {
+        dt_min = r.dt_min;
+        i_dt   = r.i_dt;
       }
     }
     const double work = std::max(0.0, frame_work_ + pressure_work_);
@@ -691,7 +732,8 @@ namespace coupling
     last_good_.plastic_strain.resize(n);
     last_good_.damage.resize(n);
     const auto &x0 = body_->reference_positions();
-    for (unsigned int i = 0; i < n; ++i)
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i)
     {
       for (int d = 0; d < 3; ++d)
       {
