@@ -317,8 +317,7 @@ namespace coupling
         FrictionState &fr = friction_[i];
         if (hit.face < 0 || hit.gap >= 0)
         {
-          if (fr.sliding || fr.tangential_force != V3{0, 0, 0}) // written only when set
-            fr = FrictionState{};
+          fr = FrictionState{};
           continue;
         }
         const double k = stiffness_factor_.empty() ? k0 : k0 * stiffness_factor_[i];
@@ -369,7 +368,6 @@ namespace coupling
         mine.push_back({static_cast<std::int32_t>(i), hit, f});
       }
     }
-
 
     // Scatter in particle order: deterministic, and each force applied once to each side.
     for (const auto &list : contacts_)

@@ -345,21 +345,19 @@ namespace sph::pair_kernel
           acc[3 * cc + r] = _mm256_fmadd_pd(di[r], g[cc], acc[3 * cc + r]);
           t[3 * cc + r]   = _mm256_mul_pd(dj[r], g[cc]);
         }
-      v4 lo[4], hi[4], last[4];
+      v4 lo[4], hi[4];
       transpose(t[0], t[1], t[2], t[3], lo); // lo[m]: entries 0..3 of pair m
       transpose(t[4], t[5], t[6], t[7], hi); // hi[m]: entries 4..7
-      const v4 zero = _mm256_setzero_pd();
-      transpose(t[8], zero, zero, zero, last); // last[m]: (entry 8 of pair m, 0, 0, 0)
+      alignas(32) double last[4];            // entry 8 of each pair
+      _mm256_store_pd(last, t[8]);
       for (int m = 0; m < n_valid; ++m)
-      {
-        double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
         if (j[m] < e) // j >= e: added by j's owner (cross-range share)
         {
+          double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
           _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
           _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), hi[m]));
-          aj[8] += _mm256_cvtsd_f64(last[m]);
+          aj[8] += last[m];
         }
-      }
     }
   } // namespace
 

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <cmath>
 
 using namespace coupling;
@@ -385,4 +387,50 @@ TEST(ContactConvexApex, NoContactFarFromAWarpedConeMesh)
   }
   ASSERT_GT(n_far, 10000u);
   ASSERT_GT(n_touching, 100u) << "the lattice must reach the flank, or the test proves little";
+}
+
+TEST(ContactExchange, SameForcesForAnyThreadCount)
+{
+  // each thread keeps the contacts of a contiguous chunk of particles and the forces are
+  // scattered chunk after chunk: the node sums get their terms in particle order whatever the
+  // thread count, so the results are bitwise equal (two applies: the friction springs carry over)
+  const ContactSurface s = flat_surface(6, 0.06, 0.0, 0.1);
+  std::vector<double> x, v, m;
+  for (int j = 0; j < 23; ++j)
+    for (int i = 0; i < 23; ++i)
+    {
+      x.insert(x.end(),
+               {0.001 + 0.0026 * i, 0.0015 + 0.0025 * j, 0.0006 + 1e-5 * ((i * 7 + j) % 11)});
+      v.insert(v.end(), {0.1 * ((i % 3) - 1), -0.05 * ((j % 5) - 2), -0.01});
+      m.push_back(2e-3);
+    }
+  ContactParticles p{x.data(), v.data(), m.data(), m.size()};
+  ContactParameters prm;
+  prm.stiffness       = 1e7;
+  prm.radius          = 1e-3;
+  prm.friction_static = prm.friction_dynamic = 0.3;
+  const int threads_before = omp_get_max_threads();
+  std::vector<std::vector<double>> particles, nodes, scalars;
+  for (const int threads : {1, 2, 3})
+  {
+    omp_set_num_threads(threads);
+    PenaltyContact contact(prm, p.n);
+    std::vector<double> fp(x.size(), 0.0), fn(s.position.size(), 0.0);
+    std::size_t n_in = 0;
+    for (int step = 0; step < 2; ++step)
+      n_in = contact.apply(p, s, 2e-3, fp, fn); // a long step: the springs slip
+    ASSERT_GT(n_in, 100u) << "the fixture must be in contact, or the test proves nothing";
+    particles.push_back(fp);
+    nodes.push_back(fn);
+    scalars.push_back({contact.normal_force(), contact.penalty_energy(),
+                       contact.friction_dissipation(), double(contact.n_sliding())});
+  }
+  omp_set_num_threads(threads_before);
+  EXPECT_GT(scalars[0][2], 0.0) << "some particles must slide, or friction is not exercised";
+  for (const std::size_t k : {1, 2})
+  {
+    EXPECT_EQ(particles[0], particles[k]) << k + 1 << " threads against 1";
+    EXPECT_EQ(nodes[0], nodes[k]) << k + 1 << " threads against 1";
+    EXPECT_EQ(scalars[0], scalars[k]) << k + 1 << " threads against 1";
+  }
 }

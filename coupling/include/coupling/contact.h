@@ -9,8 +9,8 @@
 /// the forces on rock and platen cancel to round-off.
 
 #include <array>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <map>
 #include <string>
