@@ -10,6 +10,7 @@
 
 #include <omp.h>
 
+#include <array>
 #include <cmath>
 
 using namespace coupling;
@@ -36,6 +37,37 @@ namespace
     return s;
   }
 
+  /// n x n particles of 2 g, positions and velocities from the functions of the indices (i, j).
+  struct Patch
+  {
+    std::vector<double> x, v, m;
+    ContactParticles particles() const { return {x.data(), v.data(), m.data(), m.size()}; }
+  };
+  template <typename Position, typename Velocity>
+  Patch particle_patch(const int n, const Position &position, const Velocity &velocity)
+  {
+    Patch p;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const std::array<double, 3> xp = position(i, j), vp = velocity(i, j);
+        p.x.insert(p.x.end(), xp.begin(), xp.end());
+        p.v.insert(p.v.end(), vp.begin(), vp.end());
+        p.m.push_back(2e-3);
+      }
+    return p;
+  }
+
+  /// The penalty contact of the exchange tests: k = 1e7 N/m, r = 1 mm, friction 0.3.
+  ContactParameters frictional_contact()
+  {
+    ContactParameters prm;
+    prm.stiffness       = 1e7;
+    prm.radius          = 1e-3;
+    prm.friction_static = prm.friction_dynamic = 0.3;
+    return prm;
+  }
+
   double sum_norm(const std::vector<double> &f)
   {
     double s = 0;
@@ -49,22 +81,16 @@ TEST(ContactExchange, ForcesCancelToRoundOff)
 {
   const ContactSurface s = flat_surface(4, 0.04, 0.0, 0.1);
   // a 7 x 7 patch of particles, some penetrating, some sliding sideways
-  std::vector<double> x, v, m;
-  for (int j = 0; j < 7; ++j)
-    for (int i = 0; i < 7; ++i)
-    {
-      x.insert(x.end(),
-               {0.003 + 0.0055 * i, 0.002 + 0.0057 * j, 0.0008 + 1e-5 * ((i * 7 + j) % 5)});
-      v.insert(v.end(), {0.1 * i, -0.05 * j, -0.01});
-      m.push_back(2e-3);
-    }
-  ContactParticles p{x.data(), v.data(), m.data(), m.size()};
-  ContactParameters prm;
-  prm.stiffness       = 1e7;
-  prm.radius          = 1e-3;
-  prm.friction_static = prm.friction_dynamic = 0.3;
-  PenaltyContact contact(prm, p.n);
-  std::vector<double> fp(x.size(), 0.0), fn(s.position.size(), 0.0);
+  const Patch patch = particle_patch(
+    7,
+    [](int i, int j) {
+      return std::array<double, 3>{0.003 + 0.0055 * i, 0.002 + 0.0057 * j,
+                                   0.0008 + 1e-5 * ((i * 7 + j) % 5)};
+    },
+    [](int i, int j) { return std::array<double, 3>{0.1 * i, -0.05 * j, -0.01}; });
+  const ContactParticles p = patch.particles();
+  PenaltyContact contact(frictional_contact(), p.n);
+  std::vector<double> fp(patch.x.size(), 0.0), fn(s.position.size(), 0.0);
   const std::size_t n_in = contact.apply(p, s, 1e-7, fp, fn);
   ASSERT_GT(n_in, 10u) << "the fixture must be in contact, or the test proves nothing";
   const double scale = sum_norm(fp);
@@ -395,27 +421,23 @@ TEST(ContactExchange, SameForcesForAnyThreadCount)
   // scattered chunk after chunk: the node sums get their terms in particle order whatever the
   // thread count, so the results are bitwise equal (two applies: the friction springs carry over)
   const ContactSurface s = flat_surface(6, 0.06, 0.0, 0.1);
-  std::vector<double> x, v, m;
-  for (int j = 0; j < 23; ++j)
-    for (int i = 0; i < 23; ++i)
-    {
-      x.insert(x.end(),
-               {0.001 + 0.0026 * i, 0.0015 + 0.0025 * j, 0.0006 + 1e-5 * ((i * 7 + j) % 11)});
-      v.insert(v.end(), {0.1 * ((i % 3) - 1), -0.05 * ((j % 5) - 2), -0.01});
-      m.push_back(2e-3);
-    }
-  ContactParticles p{x.data(), v.data(), m.data(), m.size()};
-  ContactParameters prm;
-  prm.stiffness       = 1e7;
-  prm.radius          = 1e-3;
-  prm.friction_static = prm.friction_dynamic = 0.3;
+  const Patch patch = particle_patch(
+    23,
+    [](int i, int j) {
+      return std::array<double, 3>{0.001 + 0.0026 * i, 0.0015 + 0.0025 * j,
+                                   0.0006 + 1e-5 * ((i * 7 + j) % 11)};
+    },
+    [](int i, int j) {
+      return std::array<double, 3>{0.1 * ((i % 3) - 1), -0.05 * ((j % 5) - 2), -0.01};
+    });
+  const ContactParticles p = patch.particles();
   const int threads_before = omp_get_max_threads();
   std::vector<std::vector<double>> particles, nodes, scalars;
   for (const int threads : {1, 2, 3})
   {
     omp_set_num_threads(threads);
-    PenaltyContact contact(prm, p.n);
-    std::vector<double> fp(x.size(), 0.0), fn(s.position.size(), 0.0);
+    PenaltyContact contact(frictional_contact(), p.n);
+    std::vector<double> fp(patch.x.size(), 0.0), fn(s.position.size(), 0.0);
     std::size_t n_in = 0;
     for (int step = 0; step < 2; ++step)
       n_in = contact.apply(p, s, 2e-3, fp, fn); // a long step: the springs slip
