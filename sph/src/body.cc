@@ -3,6 +3,7 @@
 
 #include "pair_kernel.h"
 #include "pair_kernel_mixed.h"
+#include "stress_batch.h"
 
 #include <omp.h>
 
@@ -492,6 +493,8 @@ namespace sph
                       for (int c = 0; c < dim; ++c)
                         p_.F[j](r, c) += share[r * dim + c];
                   }
+              [[maybe_unused]] std::int32_t batch[stress_batch::lanes];
+              [[maybe_unused]] int          n_batch = 0;
               for (std::int32_t i = b; i < e; ++i)
                 {
                   // A_i in registers: its terms as second particle are in p_.F[i] already
@@ -550,36 +553,106 @@ namespace sph
                             }
                         }
                     }
-                  Tensor<dim> A;
-                  for (int r = 0; r < dim; ++r)
-                    for (int c = 0; c < dim; ++c)
-                      A(r, c) = a[r][c];
-                  const Tensor<dim> F = A * p_.L[i].transpose();
-                  // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
-                  const Tensor<dim> G  = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
-                  const Tensor3     gg = embed<dim>(G);
-                  const Tensor3     de = 0.5 * (gg + gg.transpose());
-                  const Tensor3     R  = hughes_winget(0.5 * (gg - gg.transpose()));
-                  const Tensor3     rotated = R * p_.stress[i] * R.transpose();
-                  const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
-                  const Tensor<dim> C = cofactor<dim>(F); // J F^{-T}
-                  const double      J = F.row(0).dot(C.row(0));
-                  stress_work_[i] +=
-                    p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
-                  p_.stress[i]  = up.stress;
-                  p_.history[i] = up.state;
-                  F_prev_[i]    = F;
-                  p_.F[i]       = F;
-                  p_.volume[i]  = p_.volume0[i] * J;
-                  p_.density[i] = p_.mass[i] / p_.volume[i];
-                  // first Piola-Kirchhoff P = J sigma F^{-T} = sigma cof(F)
-                  const Tensor<dim> P = up.stress.template topLeftCorner<dim, dim>() * C;
-                  Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
+                  if constexpr (dim == 3)
+                    {
+                      // A_i to p_.F[i]; the stress update of four particles at a time
+                      for (int r = 0; r < dim; ++r)
+                        for (int c = 0; c < dim; ++c)
+                          p_.F[i](r, c) = a[r][c];
+                      batch[n_batch++] = i;
+                      if (n_batch == stress_batch::lanes || i + 1 == e)
+                        {
+                          update_stress_batch(model, batch, n_batch);
+                          n_batch = 0;
+                        }
+                    }
+                  else
+                    {
+                      Tensor<dim> A;
+                      for (int r = 0; r < dim; ++r)
+                        for (int c = 0; c < dim; ++c)
+                          A(r, c) = a[r][c];
+                      const Tensor<dim> F = A * p_.L[i].transpose();
+                      // incremental objective update (Hughes-Winget) with G = dF F_mid^{-1}
+                      const Tensor<dim> G = (F - F_prev_[i]) * (0.5 * (F + F_prev_[i])).inverse();
+                      const Tensor3     gg = embed<dim>(G);
+                      const Tensor3     de = 0.5 * (gg + gg.transpose());
+                      const Tensor3     R  = hughes_winget(0.5 * (gg - gg.transpose()));
+                      const Tensor3     rotated = R * p_.stress[i] * R.transpose();
+                      const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
+                      const Tensor<dim> C = cofactor<dim>(F); // J F^{-T}
+                      const double      J = F.row(0).dot(C.row(0));
+                      stress_work_[i] +=
+                        p_.volume0[i] * J * (0.5 * (rotated + up.stress)).cwiseProduct(de).sum();
+                      p_.stress[i]  = up.stress;
+                      p_.history[i] = up.state;
+                      F_prev_[i]    = F;
+                      p_.F[i]       = F;
+                      p_.volume[i]  = p_.volume0[i] * J;
+                      p_.density[i] = p_.mass[i] / p_.volume[i];
+                      // first Piola-Kirchhoff P = J sigma F^{-T} = sigma cof(F)
+                      const Tensor<dim> P = up.stress.template topLeftCorner<dim, dim>() * C;
+                      Q_[i] = cor ? Tensor<dim>(P * p_.L[i]) : P;
+                    }
                 }
             }
         }
       },
       model_);
+  }
+
+  template <int dim>
+  template <typename Model>
+  void Body<dim>::update_stress_batch(const Model &model, std::int32_t *idx, const int n)
+  {
+    static_assert(dim == 3);
+    // a short batch repeats its last particle (its lanes compute the same, only n are written)
+    for (int l = n; l < stress_batch::lanes; ++l)
+      idx[l] = idx[n - 1];
+    stress_batch::Fields f;
+    f.F         = p_.F[0].data();
+    f.L         = p_.L[0].data();
+    f.F_prev    = F_prev_[0].data();
+    f.stress    = p_.stress[0].data();
+    f.Q         = Q_[0].data();
+    f.volume0   = p_.volume0.data();
+    f.mass      = p_.mass.data();
+    f.volume    = p_.volume.data();
+    f.density   = p_.density.data();
+    f.work      = stress_work_.data();
+    f.two_G     = 2.0 * rock_.G;
+    f.lambda    = rock_.K - 2.0 / 3.0 * rock_.G;
+    f.corrected = corrected();
+    stress_batch::Batch b;
+    stress_batch::kinematics(f, idx, b, simd_);
+    // the next batch's fields on their way while the model and the next pairs run
+    stress_batch::prefetch_next(f, idx[n - 1] + 1, static_cast<std::int32_t>(p_.x.size()),
+                                p_.history.data());
+    // the rock model, particle by particle: the trial where it is surely elastic
+    for (int l = 0; l < stress_batch::lanes; ++l)
+      {
+        Tensor3 trial;
+        for (int e = 0; e < 9; ++e)
+          trial.data()[e] = b.trial[e][l];
+        const std::int32_t i = idx[l];
+        if (l >= n || model.surely_elastic(trial, p_.history[i], rock_))
+          {
+            for (int e = 0; e < 9; ++e)
+              b.stress[e][l] = trial.data()[e];
+            continue;
+          }
+        Tensor3 rotated, de;
+        for (int e = 0; e < 9; ++e)
+          {
+            rotated.data()[e] = b.rotated[e][l];
+            de.data()[e]      = b.de[e][l];
+          }
+        const rock::StressUpdate up = model(rotated, de, p_.history[i], rock_);
+        p_.history[i]               = up.state;
+        for (int e = 0; e < 9; ++e)
+          b.stress[e][l] = up.stress.data()[e];
+      }
+    stress_batch::finish(f, idx, n, b, simd_);
   }
 
   template <int dim>

@@ -343,6 +343,39 @@ namespace sph::rock
     return out;
   }
 
+  /// A sufficient test that the trial stress t lies inside the (softened) Mohr-Coulomb surface
+  /// and below the tension cut-off of a particle of strength factor `strength` at `damage`.
+  /// Bounds from the invariants alone: with the mean stress m, q = sqrt(J2) and the deviatoric
+  /// principal stresses d0 >= d1 >= d2, the Lode angle within +-30 deg gives d0 - d2 <= 2 q,
+  /// |d1| <= q / sqrt(3) and d0 <= 2 q / sqrt(3), so
+  ///   f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
+  ///     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
+  /// Both below the surfaces by a margin far above round-off: the trial is admissible.
+  inline bool mohr_coulomb_surely_elastic(const Tensor3 &t, const double strength,
+                                          const double damage, const RockParameters &prm)
+  {
+    const double   factor = strength * strength_factor(damage, prm);
+    const Friction fr     = friction_at(damage, prm);
+    const double   m      = t.trace() / 3.0;
+    double         dd     = 0; // dev : dev = 2 J2
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        {
+          const double d = t(r, c) - (r == c ? m : 0.0);
+          dd += d * d;
+        }
+    const double q      = std::sqrt(0.5 * dd);
+    const double c      = prm.cohesion * factor;
+    const double margin = 1e-9 * (std::abs(m) + q + c);
+    const double f_max  = 2.0 * m * fr.sin_phi +
+                         q * (2.0 + std::abs(fr.sin_phi) / std::sqrt(3.0)) -
+                         2.0 * c * fr.cos_phi;
+    if (!(f_max < -margin))
+      return false;
+    return prm.tensile_strength <= 0 ||
+           m + 2.0 / std::sqrt(3.0) * q < prm.tensile_strength * factor - margin;
+  }
+
   /// Mohr-Coulomb as LS-DYNA's *MAT_MOHR_COULOMB (non-associated, dilation psi), with the
   /// Rankine tension cut-off when prm.tensile_strength > 0. Cohesion and tensile strength soften
   /// linearly with the equivalent plastic strain to residual_fraction at softening_strain.
@@ -369,34 +402,9 @@ namespace sph::rock
         }
       return pl;
     };
-    // Bounds from the invariants alone: with the mean stress m, q = sqrt(J2) and the deviatoric
-    // principal stresses d0 >= d1 >= d2, the Lode angle within +-30 deg gives d0 - d2 <= 2 q,
-    // |d1| <= q / sqrt(3) and d0 <= 2 q / sqrt(3), so
-    //   f = 2 m sin(phi) + (d0 - d2) - sin(phi) d1 - 2 c cos(phi)
-    //     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
-    // Both below the surfaces by a margin far above round-off: the trial is admissible.
     const auto surely_elastic = [&prm](const Tensor3 &t, const double strength,
                                        const double damage) {
-      const double   factor = strength * strength_factor(damage, prm);
-      const Friction fr     = friction_at(damage, prm);
-      const double   m      = t.trace() / 3.0;
-      double       dd = 0; // dev : dev = 2 J2
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          {
-            const double d = t(r, c) - (r == c ? m : 0.0);
-            dd += d * d;
-          }
-      const double q      = std::sqrt(0.5 * dd);
-      const double c      = prm.cohesion * factor;
-      const double margin = 1e-9 * (std::abs(m) + q + c);
-      const double f_max  = 2.0 * m * fr.sin_phi +
-                           q * (2.0 + std::abs(fr.sin_phi) / std::sqrt(3.0)) -
-                           2.0 * c * fr.cos_phi;
-      if (!(f_max < -margin))
-        return false;
-      return prm.tensile_strength <= 0 ||
-             m + 2.0 / std::sqrt(3.0) * q < prm.tensile_strength * factor - margin;
+      return mohr_coulomb_surely_elastic(t, strength, damage, prm);
     };
     return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
   }
@@ -456,6 +464,11 @@ namespace sph::rock
     {
       return update_elastic(s, de, h, p);
     }
+    /// True where the elastic trial t (elastic_trial of the same s and de) is the update.
+    bool surely_elastic(const Tensor3 &, const MaterialState &, const RockParameters &) const
+    {
+      return true;
+    }
   };
   struct MohrCoulomb
   {
@@ -464,6 +477,10 @@ namespace sph::rock
     {
       return update_mohr_coulomb(s, de, h, p);
     }
+    bool surely_elastic(const Tensor3 &t, const MaterialState &h, const RockParameters &p) const
+    {
+      return mohr_coulomb_surely_elastic(t, h.strength, h.damage, p);
+    }
   };
   struct HoekBrown
   {
@@ -471,6 +488,10 @@ namespace sph::rock
                             const RockParameters &p) const
     {
       return update_hoek_brown(s, de, h, p);
+    }
+    bool surely_elastic(const Tensor3 &, const MaterialState &, const RockParameters &) const
+    {
+      return false; // no cheap test: the principal stresses decide
     }
   };
   using Model = std::variant<Elastic, MohrCoulomb, HoekBrown>;
