@@ -276,21 +276,27 @@ namespace sph::stress_batch
   {
     if (i >= n)
       return;
-    const std::int32_t last  = std::min(i + lanes, n) - 1;
-    const auto         lines = [](const void *from, const void *to, const bool write) {
-      const char *a = static_cast<const char *>(from), *b = static_cast<const char *>(to);
-      for (; a < b; a += 64)
+    const std::int32_t last = std::min(i + lanes, n) - 1;
+    // every 64-byte line that holds a byte of [from, to)
+    const auto lines = [](const void *from, const void *to, const bool write) {
+      const std::uintptr_t b = reinterpret_cast<std::uintptr_t>(to);
+      for (std::uintptr_t a = reinterpret_cast<std::uintptr_t>(from) & ~std::uintptr_t(63); a < b;
+           a += 64)
         {
           if (write)
-            __builtin_prefetch(a, 1);
+            __builtin_prefetch(reinterpret_cast<const void *>(a), 1);
           else
-            __builtin_prefetch(a, 0);
+            __builtin_prefetch(reinterpret_cast<const void *>(a), 0);
         }
     };
     lines(tensor(f.L, i), tensor(f.L, last + 1), false);
     lines(tensor(f.F_prev, i), tensor(f.F_prev, last + 1), true);
     lines(tensor(f.stress, i), tensor(f.stress, last + 1), true);
     lines(tensor(f.Q, i), tensor(f.Q, last + 1), true);
+    for (const double *a : {f.volume0, f.mass})
+      lines(a + i, a + last + 1, false);
+    for (double *a : {f.work, f.volume, f.density})
+      lines(a + i, a + last + 1, true);
     const char *h = static_cast<const char *>(history);
     lines(h + 24 * static_cast<std::int64_t>(i), h + 24 * static_cast<std::int64_t>(last + 1), true);
   }
