@@ -282,11 +282,12 @@ namespace sph
     for (std::size_t i = 0; i < n; ++i)
       pair_begin_[i + 1] += pair_begin_[i];
     // ranges of equal work: a pair is one unit, a particle per_particle units (its stress
-    // update is ~930 instructions against ~130 + ~55 per pair in the two vectorised passes,
-    // callgrind, plus its loop and tail-group overhead; surface ranges hold more particles per
+    // update plus its loop and tail-group overhead; surface ranges hold more particles per
     // pair). 8 was measured, not derived: `valgrind --tool=callgrind --separate-threads=yes
-    // sph_bench 0.0025 10 2` puts the two threads' force passes within 1 % and their stress
-    // passes 6 % apart)
+    // sph_bench 0.0025 10 2` put the two threads' force passes within 1 % and their stress
+    // passes 6 % apart with the per-particle Eigen stress update; with the batched one
+    // (stress_batch.h) 8 is still the best of 2, 4, 8 and 12 (`sph_bench 0.00125 40 2`, 6
+    // interleaved rounds: median walls 2.15, 2.11, 1.98, 2.15 s)
     const int         T            = n_threads_;
     constexpr double  per_particle = 8.0;
     const double      total        = static_cast<double>(n_p) + per_particle * n;
