@@ -285,18 +285,22 @@ namespace sph::pair_kernel::mixed
         pair_data(a.pair, p, g);
       const Gathered lb(a.record, j);
       const Lanes8   r = pair(a, la, lb, g);
-      // the sums on i in double, lanes past pe masked
+      // the sums on i in double, lanes past pe masked (a whole group has none: it adds the
+      // forces widened for the scatter below, the same values, one conversion fewer)
+      v4 f_lo[3], f_hi[3];
+      for (int d = 0; d < 3; ++d)
+        widen(r.force[d], f_lo[d], f_hi[d]);
       const v8 out[5] = {r.force[0], r.force[1], r.force[2], r.power, r.hg_power};
       for (int c = 0; c < 5; ++c)
       {
         v4 lo, hi;
-        widen(_mm256_and_ps(valid, out[c]), lo, hi);
+        if (c < 3 && n_valid == 8)
+          lo = f_lo[c], hi = f_hi[c];
+        else
+          widen(_mm256_and_ps(valid, out[c]), lo, hi);
         acc[c] = _mm256_add_pd(_mm256_add_pd(acc[c], lo), hi);
       }
       // minus the force on each second particle j < e, pair by pair (ascending p)
-      v4 f_lo[3], f_hi[3];
-      for (int d = 0; d < 3; ++d)
-        widen(r.force[d], f_lo[d], f_hi[d]);
       v4 f[8];
       transpose(f_lo[0], f_lo[1], f_lo[2], zero, f);
       transpose(f_hi[0], f_hi[1], f_hi[2], zero, f + 4);
