@@ -628,7 +628,7 @@ namespace sph
     stress_batch::kinematics(f, idx, b, simd_);
     // the next batch's fields on their way while the model and the next pairs run
     stress_batch::prefetch_next(f, idx[n - 1] + 1, static_cast<std::int32_t>(p_.x.size()),
-                                p_.history.data());
+                                p_.history.data(), sizeof(MaterialState));
     // the rock model, particle by particle: the trial where it is surely elastic
     for (int l = 0; l < stress_batch::lanes; ++l)
       {

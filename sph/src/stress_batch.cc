@@ -3,6 +3,8 @@
 #include "avx2_util.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <initializer_list>
 
 // Built with -ffp-contract=off (sph/CMakeLists.txt): the scalar and the AVX2 instantiations of
 // the templates below then compute the same bits.
@@ -14,7 +16,10 @@ namespace sph::stress_batch
 #define SPH_INLINE __attribute__((always_inline)) inline
 
     /// Entry (r, c) of a column-major 3 x 3 tensor.
-    constexpr int at(const int r, const int c) { return r + 3 * c; }
+    constexpr int at(const int r, const int c)
+    {
+      return r + 3 * c;
+    }
 
     /// Cofactor matrix det(m) m^{-T} (cyclic index form).
     template <typename T>
@@ -22,10 +27,10 @@ namespace sph::stress_batch
     {
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          {
-            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            out[at(r, c)] = m[at(r1, c1)] * m[at(r2, c2)] - m[at(r1, c2)] * m[at(r2, c1)];
-          }
+        {
+          const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+          out[at(r, c)] = m[at(r1, c1)] * m[at(r2, c2)] - m[at(r1, c2)] * m[at(r2, c1)];
+        }
     }
 
     /// The first half for one particle (T = double) or four (T = __m256d), see the file comment.
@@ -36,18 +41,18 @@ namespace sph::stress_batch
     {
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) // F = A L^T
-          F[at(r, c)] = (A[at(r, 0)] * L[at(c, 0)] + A[at(r, 1)] * L[at(c, 1)]) +
-                        A[at(r, 2)] * L[at(c, 2)];
+          F[at(r, c)] =
+            (A[at(r, 0)] * L[at(c, 0)] + A[at(r, 1)] * L[at(c, 1)]) + A[at(r, 2)] * L[at(c, 2)];
       // G = (F - F_prev) M^{-1}, M = (F + F_prev) / 2, M^{-1} = cof(M)^T / det M
       T D[9], M[9], Mc[9], G[9];
       for (int e = 0; e < 9; ++e)
-        {
-          D[e] = F[e] - Fp[e];
-          M[e] = 0.5 * (F[e] + Fp[e]);
-        }
+      {
+        D[e] = F[e] - Fp[e];
+        M[e] = 0.5 * (F[e] + Fp[e]);
+      }
       cofactor(M, Mc);
-      const T inv_det =
-        1.0 / ((M[at(0, 0)] * Mc[at(0, 0)] + M[at(0, 1)] * Mc[at(0, 1)]) + M[at(0, 2)] * Mc[at(0, 2)]);
+      const T inv_det = 1.0 / ((M[at(0, 0)] * Mc[at(0, 0)] + M[at(0, 1)] * Mc[at(0, 1)]) +
+                               M[at(0, 2)] * Mc[at(0, 2)]);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
           G[at(r, c)] = ((D[at(r, 0)] * Mc[at(c, 0)] + D[at(r, 1)] * Mc[at(c, 1)]) +
@@ -57,46 +62,46 @@ namespace sph::stress_batch
       T w[9];
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          {
-            de[at(r, c)] = 0.5 * (G[at(r, c)] + G[at(c, r)]);
-            w[at(r, c)]  = 0.5 * (G[at(r, c)] - G[at(c, r)]);
-          }
+        {
+          de[at(r, c)] = 0.5 * (G[at(r, c)] + G[at(c, r)]);
+          w[at(r, c)]  = 0.5 * (G[at(r, c)] - G[at(c, r)]);
+        }
       // Hughes-Winget R = (I - w/2)^{-1} (I + w/2) in closed form: with w/2 = [a]_x,
       // R = I + 2 ([a]_x + a a^T - |a|^2 I) / (1 + |a|^2)
       const T a[3] = {0.5 * w[at(2, 1)], 0.5 * w[at(0, 2)], 0.5 * w[at(1, 0)]};
       const T a2   = (a[0] * a[0] + a[1] * a[1]) + a[2] * a[2];
       const T k    = 2.0 / (1.0 + a2);
       const T diag = 1.0 - k * a2;
-      T       R[9];
+      T R[9];
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          {
-            R[at(r, c)] = k * (0.5 * w[at(r, c)] + a[r] * a[c]);
-            if (r == c)
-              R[at(r, c)] = R[at(r, c)] + diag;
-          }
+        {
+          R[at(r, c)] = k * (0.5 * w[at(r, c)] + a[r] * a[c]);
+          if (r == c)
+            R[at(r, c)] = R[at(r, c)] + diag;
+        }
       // rotated = (R sigma) R^T: the upper triangle, mirrored (exactly symmetric)
       T Rs[9];
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          Rs[at(r, c)] = (R[at(r, 0)] * s[at(0, c)] + R[at(r, 1)] * s[at(1, c)]) +
-                         R[at(r, 2)] * s[at(2, c)];
+          Rs[at(r, c)] =
+            (R[at(r, 0)] * s[at(0, c)] + R[at(r, 1)] * s[at(1, c)]) + R[at(r, 2)] * s[at(2, c)];
       for (int r = 0; r < 3; ++r)
         for (int c = r; c < 3; ++c)
-          {
-            rot[at(r, c)] = (Rs[at(r, 0)] * R[at(c, 0)] + Rs[at(r, 1)] * R[at(c, 1)]) +
-                            Rs[at(r, 2)] * R[at(c, 2)];
-            rot[at(c, r)] = rot[at(r, c)];
-          }
+        {
+          rot[at(r, c)] =
+            (Rs[at(r, 0)] * R[at(c, 0)] + Rs[at(r, 1)] * R[at(c, 1)]) + Rs[at(r, 2)] * R[at(c, 2)];
+          rot[at(c, r)] = rot[at(r, c)];
+        }
       // elastic trial, in the order of rock::elastic_trial
       const T lt = lambda * ((de[at(0, 0)] + de[at(1, 1)]) + de[at(2, 2)]);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          {
-            trial[at(r, c)] = rot[at(r, c)] + two_G * de[at(r, c)];
-            if (r == c)
-              trial[at(r, c)] = trial[at(r, c)] + lt;
-          }
+        {
+          trial[at(r, c)] = rot[at(r, c)] + two_G * de[at(r, c)];
+          if (r == c)
+            trial[at(r, c)] = trial[at(r, c)] + lt;
+        }
       cofactor(F, C);
       J = (F[at(0, 0)] * C[at(0, 0)] + F[at(0, 1)] * C[at(0, 1)]) + F[at(0, 2)] * C[at(0, 2)];
     }
@@ -134,48 +139,48 @@ namespace sph::stress_batch
     void kinematics_scalar(const Fields &f, const std::int32_t *idx, Batch &b)
     {
       for (int l = 0; l < lanes; ++l)
+      {
+        const std::int32_t i = idx[l];
+        double F[9], de[9], rot[9], trial[9], C[9], J;
+        kinematics_of(tensor(f.F, i), tensor(f.L, i), tensor(f.F_prev, i), tensor(f.stress, i),
+                      f.two_G, f.lambda, F, de, rot, trial, C, J);
+        for (int e = 0; e < 9; ++e)
         {
-          const std::int32_t i = idx[l];
-          double F[9], de[9], rot[9], trial[9], C[9], J;
-          kinematics_of(tensor(f.F, i), tensor(f.L, i), tensor(f.F_prev, i), tensor(f.stress, i),
-                        f.two_G, f.lambda, F, de, rot, trial, C, J);
-          for (int e = 0; e < 9; ++e)
-            {
-              b.F[e][l]       = F[e];
-              b.de[e][l]      = de[e];
-              b.rotated[e][l] = rot[e];
-              b.trial[e][l]   = trial[e];
-              b.C[e][l]       = C[e];
-            }
-          b.J[l] = J;
+          b.F[e][l]       = F[e];
+          b.de[e][l]      = de[e];
+          b.rotated[e][l] = rot[e];
+          b.trial[e][l]   = trial[e];
+          b.C[e][l]       = C[e];
         }
+        b.J[l] = J;
+      }
     }
 
     void finish_scalar(const Fields &f, const std::int32_t *idx, const int n_valid, const Batch &b)
     {
       for (int l = 0; l < n_valid; ++l)
+      {
+        const std::int32_t i = idx[l];
+        double s[9], rot[9], de[9], C[9], Q[9], work;
+        for (int e = 0; e < 9; ++e)
         {
-          const std::int32_t i = idx[l];
-          double s[9], rot[9], de[9], C[9], Q[9], work;
-          for (int e = 0; e < 9; ++e)
-            {
-              s[e]   = b.stress[e][l];
-              rot[e] = b.rotated[e][l];
-              de[e]  = b.de[e][l];
-              C[e]   = b.C[e][l];
-            }
-          finish_of(s, rot, de, C, tensor(f.L, i), b.J[l], f.volume0[i], f.corrected, work, Q);
-          f.work[i] += work;
-          for (int e = 0; e < 9; ++e)
-            {
-              tensor(f.stress, i)[e] = s[e];
-              tensor(f.F, i)[e]      = b.F[e][l];
-              tensor(f.F_prev, i)[e] = b.F[e][l];
-              tensor(f.Q, i)[e]      = Q[e];
-            }
-          f.volume[i]  = f.volume0[i] * b.J[l];
-          f.density[i] = f.mass[i] / f.volume[i];
+          s[e]   = b.stress[e][l];
+          rot[e] = b.rotated[e][l];
+          de[e]  = b.de[e][l];
+          C[e]   = b.C[e][l];
         }
+        finish_of(s, rot, de, C, tensor(f.L, i), b.J[l], f.volume0[i], f.corrected, work, Q);
+        f.work[i] += work;
+        for (int e = 0; e < 9; ++e)
+        {
+          tensor(f.stress, i)[e] = s[e];
+          tensor(f.F, i)[e]      = b.F[e][l];
+          tensor(f.F_prev, i)[e] = b.F[e][l];
+          tensor(f.Q, i)[e]      = Q[e];
+        }
+        f.volume[i]  = f.volume0[i] * b.J[l];
+        f.density[i] = f.mass[i] / f.volume[i];
+      }
     }
 
     using avx2::v4;
@@ -201,12 +206,12 @@ namespace sph::stress_batch
       alignas(32) double last[lanes];
       _mm256_store_pd(last, in[8]);
       for (int l = 0; l < n_valid; ++l)
-        {
-          double *t = tensor(base, idx[l]);
-          _mm256_storeu_pd(t, lo[l]);
-          _mm256_storeu_pd(t + 4, hi[l]);
-          t[8] = last[l];
-        }
+      {
+        double *t = tensor(base, idx[l]);
+        _mm256_storeu_pd(t, lo[l]);
+        _mm256_storeu_pd(t + 4, hi[l]);
+        t[8] = last[l];
+      }
     }
 
     __attribute__((target("avx2,fma"))) void kinematics_avx2(const Fields &f,
@@ -219,13 +224,13 @@ namespace sph::stress_batch
       load_lanes(f.stress, idx, s);
       kinematics_of(A, L, Fp, s, f.two_G, f.lambda, F, de, rot, trial, C, J);
       for (int e = 0; e < 9; ++e)
-        {
-          _mm256_store_pd(b.F[e], F[e]);
-          _mm256_store_pd(b.de[e], de[e]);
-          _mm256_store_pd(b.rotated[e], rot[e]);
-          _mm256_store_pd(b.trial[e], trial[e]);
-          _mm256_store_pd(b.C[e], C[e]);
-        }
+      {
+        _mm256_store_pd(b.F[e], F[e]);
+        _mm256_store_pd(b.de[e], de[e]);
+        _mm256_store_pd(b.rotated[e], rot[e]);
+        _mm256_store_pd(b.trial[e], trial[e]);
+        _mm256_store_pd(b.C[e], C[e]);
+      }
       _mm256_store_pd(b.J, J);
     }
 
@@ -234,17 +239,17 @@ namespace sph::stress_batch
     {
       v4 s[9], rot[9], de[9], C[9], L[9], Q[9], F[9], work;
       for (int e = 0; e < 9; ++e)
-        {
-          s[e]   = _mm256_load_pd(b.stress[e]);
-          rot[e] = _mm256_load_pd(b.rotated[e]);
-          de[e]  = _mm256_load_pd(b.de[e]);
-          C[e]   = _mm256_load_pd(b.C[e]);
-          F[e]   = _mm256_load_pd(b.F[e]);
-        }
+      {
+        s[e]   = _mm256_load_pd(b.stress[e]);
+        rot[e] = _mm256_load_pd(b.rotated[e]);
+        de[e]  = _mm256_load_pd(b.de[e]);
+        C[e]   = _mm256_load_pd(b.C[e]);
+        F[e]   = _mm256_load_pd(b.F[e]);
+      }
       load_lanes(f.L, idx, L);
-      const v4 V0 = _mm256_set_pd(f.volume0[idx[3]], f.volume0[idx[2]], f.volume0[idx[1]],
-                                  f.volume0[idx[0]]);
-      const v4 J  = _mm256_load_pd(b.J);
+      const v4 V0 =
+        _mm256_set_pd(f.volume0[idx[3]], f.volume0[idx[2]], f.volume0[idx[1]], f.volume0[idx[0]]);
+      const v4 J = _mm256_load_pd(b.J);
       finish_of(s, rot, de, C, L, J, V0, f.corrected, work, Q);
       store_lanes(s, idx, n_valid, f.stress);
       store_lanes(F, idx, n_valid, f.F);
@@ -254,12 +259,12 @@ namespace sph::stress_batch
       _mm256_store_pd(w, work);
       _mm256_store_pd(V, V0 * J);
       for (int l = 0; l < n_valid; ++l)
-        {
-          const std::int32_t i = idx[l];
-          f.work[i] += w[l];
-          f.volume[i]  = V[l];
-          f.density[i] = f.mass[i] / V[l];
-        }
+      {
+        const std::int32_t i = idx[l];
+        f.work[i] += w[l];
+        f.volume[i]  = V[l];
+        f.density[i] = f.mass[i] / V[l];
+      }
     }
   } // namespace
 
@@ -272,7 +277,7 @@ namespace sph::stress_batch
   }
 
   void prefetch_next(const Fields &f, const std::int32_t i, const std::int32_t n,
-                     const void *history)
+                     const void *history, const std::size_t history_size)
   {
     if (i >= n)
       return;
@@ -282,12 +287,12 @@ namespace sph::stress_batch
       const std::uintptr_t b = reinterpret_cast<std::uintptr_t>(to);
       for (std::uintptr_t a = reinterpret_cast<std::uintptr_t>(from) & ~std::uintptr_t(63); a < b;
            a += 64)
-        {
-          if (write)
-            __builtin_prefetch(reinterpret_cast<const void *>(a), 1);
-          else
-            __builtin_prefetch(reinterpret_cast<const void *>(a), 0);
-        }
+      {
+        if (write)
+          __builtin_prefetch(reinterpret_cast<const void *>(a), 1);
+        else
+          __builtin_prefetch(reinterpret_cast<const void *>(a), 0);
+      }
     };
     lines(tensor(f.L, i), tensor(f.L, last + 1), false);
     lines(tensor(f.F_prev, i), tensor(f.F_prev, last + 1), true);
@@ -298,7 +303,7 @@ namespace sph::stress_batch
     for (double *a : {f.work, f.volume, f.density})
       lines(a + i, a + last + 1, true);
     const char *h = static_cast<const char *>(history);
-    lines(h + 24 * static_cast<std::int64_t>(i), h + 24 * static_cast<std::int64_t>(last + 1), true);
+    lines(h + history_size * i, h + history_size * (last + 1), true);
   }
 
   void finish(const Fields &f, const std::int32_t *idx, const int n_valid, const Batch &b,

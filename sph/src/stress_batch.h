@@ -15,6 +15,7 @@
 ///   work += V0 J (rotated + s) / 2 : de, P = s C, Q = P L (corrected) or P,
 ///   sigma = s, F = F_prev = F, V = V0 J, rho = m / V.
 
+#include <cstddef>
 #include <cstdint>
 
 namespace sph::stress_batch
@@ -24,19 +25,19 @@ namespace sph::stress_batch
   /// The per-particle arrays the update reads and writes (3 x 3 tensors: 9 doubles each).
   struct Fields
   {
-    double       *F       = nullptr; ///< in: A = sum_j V0_j (x_j - x_i) (x) grad W; out: F
+    double *F             = nullptr; ///< in: A = sum_j V0_j (x_j - x_i) (x) grad W; out: F
     const double *L       = nullptr; ///< kernel-gradient correction (identity when off)
-    double       *F_prev  = nullptr; ///< F of the last update (in), the new F (out)
-    double       *stress  = nullptr; ///< Cauchy stress [Pa]
-    double       *Q       = nullptr; ///< out: P L or P [Pa]
+    double *F_prev        = nullptr; ///< F of the last update (in), the new F (out)
+    double *stress        = nullptr; ///< Cauchy stress [Pa]
+    double *Q             = nullptr; ///< out: P L or P [Pa]
     const double *volume0 = nullptr; ///< [m^3]
     const double *mass    = nullptr; ///< [kg]
-    double       *volume  = nullptr; ///< out: V0 J [m^3]
-    double       *density = nullptr; ///< out: m / V [kg/m^3]
-    double       *work    = nullptr; ///< stress work, incremented [J]
-    double two_G  = 0;               ///< 2 x shear modulus [Pa]
-    double lambda = 0;               ///< K - 2G/3 [Pa]
-    bool corrected = false;          ///< Q = P L (else P)
+    double *volume        = nullptr; ///< out: V0 J [m^3]
+    double *density       = nullptr; ///< out: m / V [kg/m^3]
+    double *work          = nullptr; ///< stress work, incremented [J]
+    double two_G          = 0;       ///< 2 x shear modulus [Pa]
+    double lambda         = 0;       ///< K - 2G/3 [Pa]
+    bool corrected        = false;   ///< Q = P L (else P)
   };
 
   /// What the model needs between the two halves, lane by lane: value e of lane l at [e][l].
@@ -55,9 +56,10 @@ namespace sph::stress_batch
   /// rotated, trial, C and J into b. `simd`: the AVX2 version (the caller checked the CPU).
   void kinematics(const Fields &f, const std::int32_t *idx, Batch &b, bool simd);
 
-  /// Asks the memory for the fields of particles [i, i + 4) (i < n) that the next batch reads
-  /// and writes, and their history records (`history`, 24 bytes each).
-  void prefetch_next(const Fields &f, std::int32_t i, std::int32_t n, const void *history);
+  /// Asks the memory for the fields of particles [i, i + 4) (those below n) that the next batch
+  /// reads and writes, and for their history records (`history_size` bytes each from `history`).
+  void prefetch_next(const Fields &f, std::int32_t i, std::int32_t n, const void *history,
+                     std::size_t history_size);
 
   /// Second half: writes the results of the first n_valid lanes from b (b.stress set).
   void finish(const Fields &f, const std::int32_t *idx, int n_valid, const Batch &b, bool simd);

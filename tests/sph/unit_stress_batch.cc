@@ -23,9 +23,16 @@ namespace
     std::vector<Tensor> F, L, F_prev, stress, Q;
     std::vector<double> volume0, mass, volume, density, work;
     explicit Store(const std::size_t n)
-      : F(n, Tensor::Identity()), L(n, Tensor::Identity()), F_prev(n, Tensor::Identity()),
-        stress(n, Tensor::Zero()), Q(n, Tensor::Zero()), volume0(n, 1e-9), mass(n, 2.7e-6),
-        volume(n, 0.0), density(n, 0.0), work(n, 0.0)
+        : F(n, Tensor::Identity())
+        , L(n, Tensor::Identity())
+        , F_prev(n, Tensor::Identity())
+        , stress(n, Tensor::Zero())
+        , Q(n, Tensor::Zero())
+        , volume0(n, 1e-9)
+        , mass(n, 2.7e-6)
+        , volume(n, 0.0)
+        , density(n, 0.0)
+        , work(n, 0.0)
     {}
     Fields fields(const bool corrected)
     {
@@ -53,13 +60,16 @@ namespace
     for (int l = n; l < sph::stress_batch::lanes; ++l)
       idx[l] = idx[n - 1];
     const Fields f = s.fields(corrected);
-    Batch        b;
+    Batch b;
     sph::stress_batch::kinematics(f, idx, b, simd);
     std::memcpy(b.stress, b.trial, sizeof b.stress);
     sph::stress_batch::finish(f, idx, n, b, simd);
   }
 
-  bool has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+  bool has_avx2()
+  {
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }
 
   TEST(StressBatch, VectorAndScalarPathsGiveTheSameBits)
   {
@@ -68,51 +78,51 @@ namespace
     // claim; both paths are one sequence of IEEE operations, built without contraction)
     if (!has_avx2())
       GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs here";
-    const std::size_t                      n = 11;
-    std::mt19937                           rng(3);
+    const std::size_t n = 11;
+    std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    Store                                  a(n);
+    Store a(n);
     for (std::size_t i = 0; i < n; ++i)
+    {
+      for (int e = 0; e < 9; ++e)
       {
-        for (int e = 0; e < 9; ++e)
-          {
-            a.F[i].data()[e] += 1e-6 * u(rng); // A (the sum in F before the update)
-            a.L[i].data()[e] += 0.1 * u(rng);
-            a.F_prev[i].data()[e] += 1e-6 * u(rng);
-          }
-        const Tensor s = Tensor::NullaryExpr([&]() { return 1e7 * u(rng); });
-        a.stress[i]    = s + s.transpose();
-        a.volume0[i] *= 1.0 + 0.1 * u(rng);
-        a.work[i] = 1e-3 * u(rng);
+        a.F[i].data()[e] += 1e-6 * u(rng); // A (the sum in F before the update)
+        a.L[i].data()[e] += 0.1 * u(rng);
+        a.F_prev[i].data()[e] += 1e-6 * u(rng);
       }
+      const Tensor s = Tensor::NullaryExpr([&]() { return 1e7 * u(rng); });
+      a.stress[i]    = s + s.transpose();
+      a.volume0[i] *= 1.0 + 0.1 * u(rng);
+      a.work[i] = 1e-3 * u(rng);
+    }
     Store b = a;
     // batches of 4, 4 and 3 (a padded lane) on one path; 2, 4, 4, 1 on the other
     for (const bool corrected : {true, false})
-      {
-        Store x = a, y = b;
-        std::int32_t i1[4] = {0, 1, 2, 3}, i2[4] = {4, 5, 6, 7}, i3[4] = {8, 9, 10};
-        update(x, i1, 4, true, corrected);
-        update(x, i2, 4, true, corrected);
-        update(x, i3, 3, true, corrected);
-        std::int32_t j1[4] = {0, 1}, j2[4] = {2, 3, 4, 5}, j3[4] = {6, 7, 8, 9}, j4[4] = {10};
-        update(y, j1, 2, false, corrected);
-        update(y, j2, 4, false, corrected);
-        update(y, j3, 4, false, corrected);
-        update(y, j4, 1, false, corrected);
-        const auto same = [&](const auto &p, const auto &q, const char *what) {
-          EXPECT_EQ(0, std::memcmp(p.data(), q.data(), p.size() * sizeof(p[0])))
-            << what << ", corrected " << corrected;
-        };
-        same(x.F, y.F, "F");
-        same(x.F_prev, y.F_prev, "F_prev");
-        same(x.stress, y.stress, "stress");
-        same(x.Q, y.Q, "Q");
-        same(x.volume, y.volume, "volume");
-        same(x.density, y.density, "density");
-        same(x.work, y.work, "work");
-        // and the update did something (the state moved), or the test proves nothing
-        EXPECT_GT((x.stress[5] - a.stress[5]).norm(), 1e3);
-      }
+    {
+      Store x = a, y = b;
+      std::int32_t i1[4] = {0, 1, 2, 3}, i2[4] = {4, 5, 6, 7}, i3[4] = {8, 9, 10};
+      update(x, i1, 4, true, corrected);
+      update(x, i2, 4, true, corrected);
+      update(x, i3, 3, true, corrected);
+      std::int32_t j1[4] = {0, 1}, j2[4] = {2, 3, 4, 5}, j3[4] = {6, 7, 8, 9}, j4[4] = {10};
+      update(y, j1, 2, false, corrected);
+      update(y, j2, 4, false, corrected);
+      update(y, j3, 4, false, corrected);
+      update(y, j4, 1, false, corrected);
+      const auto same = [&](const auto &p, const auto &q, const char *what) {
+        EXPECT_EQ(0, std::memcmp(p.data(), q.data(), p.size() * sizeof(p[0])))
+          << what << ", corrected " << corrected;
+      };
+      same(x.F, y.F, "F");
+      same(x.F_prev, y.F_prev, "F_prev");
+      same(x.stress, y.stress, "stress");
+      same(x.Q, y.Q, "Q");
+      same(x.volume, y.volume, "volume");
+      same(x.density, y.density, "density");
+      same(x.work, y.work, "work");
+      // and the update did something (the state moved), or the test proves nothing
+      EXPECT_GT((x.stress[5] - a.stress[5]).norm(), 1e3);
+    }
   }
 
   TEST(StressBatch, UniaxialStretchFromRest)
@@ -122,30 +132,30 @@ namespace
     // and Q = P = sigma cof F. Closed forms evaluated in a few operations: 1e-14 relative is
     // round-off of a dozen operations with margin
     for (const bool simd : {false, true})
-      {
-        if (simd && !has_avx2())
-          continue;
-        // e = F11 - 1 exactly (1 + 1e-4 is not a double: the stretch is the double's)
-        const double e = (1.0 + 1e-4) - 1.0;
-        Store        s(1);
-        s.F[0](0, 0)          = 1.0 + e;
-        std::int32_t idx[4]   = {0};
-        update(s, idx, 1, simd, true);
-        const double g11    = e / (1.0 + 0.5 * e);
-        const double mu2    = 2.0 * 24e9, lambda = 40e9 - 2.0 / 3.0 * 24e9;
-        Tensor       sigma  = Tensor::Identity() * lambda * g11;
-        sigma(0, 0) += mu2 * g11;
-        const Tensor cof    = Eigen::Vector3d(1.0, 1.0 + e, 1.0 + e).asDiagonal();
-        const Tensor P      = sigma * cof;
-        EXPECT_LT((s.stress[0] - sigma).norm(), 1e-14 * sigma.norm()) << "simd " << simd;
-        EXPECT_LT((s.Q[0] - P).norm(), 1e-14 * P.norm()) << "simd " << simd;
-        EXPECT_NEAR(s.volume[0], 1e-9 * (1.0 + e), 1e-14 * 1e-9);
-        EXPECT_NEAR(s.density[0], 2.7e-6 / (1e-9 * (1.0 + e)), 1e-14 * 2.7e3);
-        // work: V0 J (0 + sigma) / 2 : de
-        EXPECT_NEAR(s.work[0], 1e-9 * (1.0 + e) * 0.5 * sigma(0, 0) * g11,
-                    1e-13 * 1e-9 * sigma(0, 0) * g11);
-        EXPECT_EQ(s.F[0], s.F_prev[0]);
-      }
+    {
+      if (simd && !has_avx2())
+        continue;
+      // e = F11 - 1 exactly (1 + 1e-4 is not a double: the stretch is the double's)
+      const double e = (1.0 + 1e-4) - 1.0;
+      Store s(1);
+      s.F[0](0, 0)        = 1.0 + e;
+      std::int32_t idx[4] = {0};
+      update(s, idx, 1, simd, true);
+      const double g11 = e / (1.0 + 0.5 * e);
+      const double mu2 = 2.0 * 24e9, lambda = 40e9 - 2.0 / 3.0 * 24e9;
+      Tensor sigma = Tensor::Identity() * lambda * g11;
+      sigma(0, 0) += mu2 * g11;
+      const Tensor cof = Eigen::Vector3d(1.0, 1.0 + e, 1.0 + e).asDiagonal();
+      const Tensor P   = sigma * cof;
+      EXPECT_LT((s.stress[0] - sigma).norm(), 1e-14 * sigma.norm()) << "simd " << simd;
+      EXPECT_LT((s.Q[0] - P).norm(), 1e-14 * P.norm()) << "simd " << simd;
+      EXPECT_NEAR(s.volume[0], 1e-9 * (1.0 + e), 1e-14 * 1e-9);
+      EXPECT_NEAR(s.density[0], 2.7e-6 / (1e-9 * (1.0 + e)), 1e-14 * 2.7e3);
+      // work: V0 J (0 + sigma) / 2 : de
+      EXPECT_NEAR(s.work[0], 1e-9 * (1.0 + e) * 0.5 * sigma(0, 0) * g11,
+                  1e-13 * 1e-9 * sigma(0, 0) * g11);
+      EXPECT_EQ(s.F[0], s.F_prev[0]);
+    }
   }
 
   TEST(StressBatch, RigidRotationTurnsTheStress)
@@ -155,25 +165,25 @@ namespace
     // is R itself. So the stress rotates as R sigma R^T with no strain (objectivity), however
     // large the angle; round-off of ~50 operations on O(1) entries: 1e-13 relative
     for (const bool simd : {false, true})
-      {
-        if (simd && !has_avx2())
-          continue;
-        const Tensor R =
-          Eigen::AngleAxisd(0.2, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
-        Store  s(1);
-        Tensor sigma;
-        sigma << -30e6, 4e6, 1e6, 4e6, -10e6, -2e6, 1e6, -2e6, 5e6;
-        s.stress[0]         = sigma;
-        s.F[0]              = R;
-        std::int32_t idx[4] = {0};
-        update(s, idx, 1, simd, false);
-        const Tensor expected = R * sigma * R.transpose();
-        EXPECT_LT((s.stress[0] - expected).norm(), 1e-13 * sigma.norm()) << "simd " << simd;
-        EXPECT_NEAR(s.volume[0], 1e-9, 1e-22);
-        // no strain, no work (round-off of the rotated stress against de ~ 1e-17)
-        EXPECT_LT(std::abs(s.work[0]), 1e-9 * 1e-13 * sigma.norm());
-        // the stress stays exactly symmetric
-        EXPECT_EQ(s.stress[0], s.stress[0].transpose());
-      }
+    {
+      if (simd && !has_avx2())
+        continue;
+      const Tensor R =
+        Eigen::AngleAxisd(0.2, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+      Store s(1);
+      Tensor sigma;
+      sigma << -30e6, 4e6, 1e6, 4e6, -10e6, -2e6, 1e6, -2e6, 5e6;
+      s.stress[0]         = sigma;
+      s.F[0]              = R;
+      std::int32_t idx[4] = {0};
+      update(s, idx, 1, simd, false);
+      const Tensor expected = R * sigma * R.transpose();
+      EXPECT_LT((s.stress[0] - expected).norm(), 1e-13 * sigma.norm()) << "simd " << simd;
+      EXPECT_NEAR(s.volume[0], 1e-9, 1e-22);
+      // no strain, no work (round-off of the rotated stress against de ~ 1e-17)
+      EXPECT_LT(std::abs(s.work[0]), 1e-9 * 1e-13 * sigma.norm());
+      // the stress stays exactly symmetric
+      EXPECT_EQ(s.stress[0], s.stress[0].transpose());
+    }
   }
 } // namespace
