@@ -90,7 +90,7 @@ namespace coupling
       {"SPH", "Hourglass coefficient", Kind::real, "0.1", "", "total-Lagrangian hourglass control [-]"},
       {"SPH", "Loaded face correction", Kind::boolean, "true", "",
        "UCS/CTCS: move the symmetric force's boundary term onto the layer the platen loads"},
-      {"SPH", "Threads", Kind::integer, "0", "", "threads; 0 = all cores"},
+      {"SPH", "Threads", Kind::integer, "0", "", "threads of the run (SPH and coupling loops); 0 = all cores"},
       {"SPH", "Pair force precision", Kind::selection, "mixed", "mixed|double",
        "3-D pair force on AVX2: float terms with double differences and sums (mixed) or all double"},
 

@@ -583,6 +583,7 @@ namespace coupling
     x.push_back({"n_cutter_nodes", double(cutter_->n_nodes())});
     x.push_back({"n_contact_particles", double(n_in_contact_)}); // at the end
     x.push_back({"contact_stiffness_N_m", contact_stiffness_});
+    x.push_back({"n_sph_pairs", double(body_->n_pairs())}); // at the end (tools/bench)
 
     // independent estimates (closed forms) for the same geometry and rock
     const RockParameters &rock = prm_.rock;
@@ -627,7 +628,8 @@ namespace coupling
   Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer,
                            const StateArrays *resume)
   {
-    CuttingTest test(parameters);
+    const ThreadLimit threads(parameters.sph.n_threads);
+    CuttingTest       test(parameters);
     return test.run(observer, resume);
   }
 } // namespace coupling

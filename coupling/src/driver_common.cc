@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <sstream>
@@ -198,5 +200,17 @@ namespace coupling
         os << "stopped on request after step " << n_steps << ", t = " << time << " s";
         throw RunInterrupted(os.str());
       }
+  }
+
+  ThreadLimit::ThreadLimit(const int n_threads)
+    : saved_(omp_get_max_threads())
+  {
+    if (n_threads > 0)
+      omp_set_num_threads(n_threads);
+  }
+
+  ThreadLimit::~ThreadLimit()
+  {
+    omp_set_num_threads(saved_);
   }
 } // namespace coupling

@@ -69,4 +69,19 @@ namespace coupling
                           std::size_t n_steps, double time,
                           std::chrono::steady_clock::time_point &last_checkpoint,
                           const std::function<void(StateArrays &)> &save_state);
+
+  /// Holds OpenMP's default thread count at `n_threads` (SPH/Threads; 0 leaves it: all cores)
+  /// while it lives, so that the coupling's own parallel loops (contact, stability check) run on
+  /// as many threads as the SPH body; restores the previous count when it goes.
+  class ThreadLimit
+  {
+  public:
+    explicit ThreadLimit(int n_threads);
+    ~ThreadLimit();
+    ThreadLimit(const ThreadLimit &)            = delete;
+    ThreadLimit &operator=(const ThreadLimit &) = delete;
+
+  private:
+    int saved_;
+  };
 } // namespace coupling

@@ -1016,6 +1016,9 @@ namespace coupling
     s.max_exchange_imbalance         = max_exchange_imbalance_;
     // the penalty stiffness per particle before the loaded-face factors, for the series checks
     s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
+    // the SPH pairs (fixed in total Lagrangian; at the end in updated Lagrangian): with n_steps
+    // and wall_seconds the pair interactions per second (tools/bench)
+    s.extra.push_back({"n_sph_pairs", static_cast<double>(body_->n_pairs())});
     s.max_displacement               = 0;
     for (const auto &r : rows)
       s.max_displacement = std::max(s.max_displacement, r.displacement);
@@ -1039,7 +1042,8 @@ namespace coupling
   {
     if (parameters.test == "indentation" || parameters.test == "linear-cutting")
       return run_cutting_case(parameters, observer, resume);
-    SpecimenTest test(parameters);
+    const ThreadLimit threads(parameters.sph.n_threads);
+    SpecimenTest      test(parameters);
     return test.run(observer, resume);
   }
 } // namespace coupling

@@ -84,10 +84,10 @@ TEST(ContactExchange, ForcesCancelToRoundOff)
   const Patch patch = particle_patch(
     7,
     [](int i, int j) {
-      return std::array<double, 3>{0.003 + 0.0055 * i, 0.002 + 0.0057 * j,
-                                   0.0008 + 1e-5 * ((i * 7 + j) % 5)};
+      return std::array<double, 3>{{0.003 + 0.0055 * i, 0.002 + 0.0057 * j,
+                                    0.0008 + 1e-5 * ((i * 7 + j) % 5)}};
     },
-    [](int i, int j) { return std::array<double, 3>{0.1 * i, -0.05 * j, -0.01}; });
+    [](int i, int j) { return std::array<double, 3>{{0.1 * i, -0.05 * j, -0.01}}; });
   const ContactParticles p = patch.particles();
   PenaltyContact contact(frictional_contact(), p.n);
   std::vector<double> fp(patch.x.size(), 0.0), fn(s.position.size(), 0.0);
@@ -424,11 +424,11 @@ TEST(ContactExchange, SameForcesForAnyThreadCount)
   const Patch patch = particle_patch(
     23,
     [](int i, int j) {
-      return std::array<double, 3>{0.001 + 0.0026 * i, 0.0015 + 0.0025 * j,
-                                   0.0006 + 1e-5 * ((i * 7 + j) % 11)};
+      return std::array<double, 3>{{0.001 + 0.0026 * i, 0.0015 + 0.0025 * j,
+                                    0.0006 + 1e-5 * ((i * 7 + j) % 11)}};
     },
     [](int i, int j) {
-      return std::array<double, 3>{0.1 * ((i % 3) - 1), -0.05 * ((j % 5) - 2), -0.01};
+      return std::array<double, 3>{{0.1 * ((i % 3) - 1), -0.05 * ((j % 5) - 2), -0.01}};
     });
   const ContactParticles p = patch.particles();
   const int threads_before = omp_get_max_threads();
