@@ -4,6 +4,7 @@
 #include "pair_kernel.h"
 #include "pair_kernel_mixed.h"
 #include "stress_batch.h"
+#include "tensor3_kernels.h"
 
 #include <omp.h>
 
@@ -53,25 +54,16 @@ namespace sph
         throw std::invalid_argument("sph::Body: " + message);
     }
 
-    /// Hughes-Winget rotation (I - w/2)^{-1} (I + w/2) of the spin increment w (antisymmetric),
-    /// in closed form (Cayley transform): with w/2 = A = [a]_x (A v = a x v) and A^3 = -|a|^2 A,
-    /// R = I + 2 (A + A^2) / (1 + |a|^2), A^2 = a a^T - |a|^2 I. No inverse, no division by a
-    /// determinant.
-    inline __attribute__((always_inline)) Tensor3 hughes_winget(const Tensor3 &w)
+    /// Hughes-Winget rotation of the spin increment w (tensor3_kernels.h).
+    inline Tensor3 hughes_winget(const Tensor3 &w)
     {
-      const Eigen::Vector3d a(0.5 * w(2, 1), 0.5 * w(0, 2), 0.5 * w(1, 0));
-      const double          a2 = a.squaredNorm(), k = 2.0 / (1.0 + a2);
-      Tensor3               R;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          R(r, c) = k * (0.5 * w(r, c) + a[r] * a[c]);
-      for (int d = 0; d < 3; ++d)
-        R(d, d) += 1.0 - k * a2;
+      Tensor3 R;
+      tensor3::hughes_winget(w.data(), R.data());
       return R;
     }
 
-    /// Cofactor matrix cof(F) = det(F) F^{-T}, without a division (cyclic index form in 3-D);
-    /// det(F) is the dot product of a row of F with the same row of cof(F).
+    /// Cofactor matrix cof(F) = det(F) F^{-T} (3-D: tensor3_kernels.h); det(F) is the dot product
+    /// of a row of F with the same row of cof(F).
     template <int dim>
     inline Tensor<dim> cofactor(const Tensor<dim> &F)
     {
@@ -79,12 +71,7 @@ namespace sph
       if constexpr (dim == 2)
         C << F(1, 1), -F(1, 0), -F(0, 1), F(0, 0);
       else
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c)
-            {
-              const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-              C(r, c)      = F(r1, c1) * F(r2, c2) - F(r1, c2) * F(r2, c1);
-            }
+        tensor3::cofactor(F.data(), C.data());
       return C;
     }
 
@@ -604,12 +591,9 @@ namespace sph
 
   template <int dim>
   template <typename Model>
-  void Body<dim>::update_stress_batch(const Model &model, std::int32_t *idx, const int n)
+  void Body<dim>::update_stress_batch(const Model &model, const std::int32_t *idx, const int n)
   {
     static_assert(dim == 3);
-    // a short batch repeats its last particle (its lanes compute the same, only n are written)
-    for (int l = n; l < stress_batch::lanes; ++l)
-      idx[l] = idx[n - 1];
     stress_batch::Fields f;
     f.F         = p_.F[0].data();
     f.L         = p_.L[0].data();
@@ -625,24 +609,19 @@ namespace sph
     f.lambda    = rock_.K - 2.0 / 3.0 * rock_.G;
     f.corrected = corrected();
     stress_batch::Batch b;
-    stress_batch::kinematics(f, idx, b, simd_);
+    stress_batch::kinematics(f, idx, n, b, simd_);
     // the next batch's fields on their way while the model and the next pairs run
     stress_batch::prefetch_next(f, idx[n - 1] + 1, static_cast<std::int32_t>(p_.x.size()),
                                 p_.history.data(), sizeof(MaterialState));
-    // the rock model, particle by particle: the trial where it is surely elastic
-    for (int l = 0; l < stress_batch::lanes; ++l)
+    // the rock model, particle by particle, where the trial (in b.stress) is not surely elastic
+    for (int l = 0; l < n; ++l)
       {
-        Tensor3 trial;
-        for (int e = 0; e < 9; ++e)
-          trial.data()[e] = b.trial[e][l];
         const std::int32_t i = idx[l];
-        if (l >= n || model.surely_elastic(trial, p_.history[i], rock_))
-          {
-            for (int e = 0; e < 9; ++e)
-              b.stress[e][l] = trial.data()[e];
-            continue;
-          }
-        Tensor3 rotated, de;
+        Tensor3            trial, rotated, de;
+        for (int e = 0; e < 9; ++e)
+          trial.data()[e] = b.stress[e][l];
+        if (model.surely_elastic(trial, p_.history[i], rock_))
+          continue;
         for (int e = 0; e < 9; ++e)
           {
             rotated.data()[e] = b.rotated[e][l];
@@ -653,7 +632,7 @@ namespace sph
         for (int e = 0; e < 9; ++e)
           b.stress[e][l] = up.stress.data()[e];
       }
-    stress_batch::finish(f, idx, n, b, simd_);
+    stress_batch::finish(f, b, simd_);
   }
 
   template <int dim>

@@ -1,6 +1,7 @@
 #include "stress_batch.h"
 
 #include "avx2_util.h"
+#include "tensor3_kernels.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -15,23 +16,9 @@ namespace sph::stress_batch
   {
 #define SPH_INLINE __attribute__((always_inline)) inline
 
-    /// Entry (r, c) of a column-major 3 x 3 tensor.
-    constexpr int at(const int r, const int c)
-    {
-      return r + 3 * c;
-    }
-
-    /// Cofactor matrix det(m) m^{-T} (cyclic index form).
-    template <typename T>
-    SPH_INLINE void cofactor(const T *m, T *out)
-    {
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-        {
-          const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-          out[at(r, c)] = m[at(r1, c1)] * m[at(r2, c2)] - m[at(r1, c2)] * m[at(r2, c1)];
-        }
-    }
+    using tensor3::at;
+    using tensor3::cofactor;
+    using tensor3::hughes_winget;
 
     /// The first half for one particle (T = double) or four (T = __m256d), see the file comment.
     template <typename T>
@@ -66,20 +53,8 @@ namespace sph::stress_batch
           de[at(r, c)] = 0.5 * (G[at(r, c)] + G[at(c, r)]);
           w[at(r, c)]  = 0.5 * (G[at(r, c)] - G[at(c, r)]);
         }
-      // Hughes-Winget R = (I - w/2)^{-1} (I + w/2) in closed form: with w/2 = [a]_x,
-      // R = I + 2 ([a]_x + a a^T - |a|^2 I) / (1 + |a|^2)
-      const T a[3] = {0.5 * w[at(2, 1)], 0.5 * w[at(0, 2)], 0.5 * w[at(1, 0)]};
-      const T a2   = (a[0] * a[0] + a[1] * a[1]) + a[2] * a[2];
-      const T k    = 2.0 / (1.0 + a2);
-      const T diag = 1.0 - k * a2;
       T R[9];
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-        {
-          R[at(r, c)] = k * (0.5 * w[at(r, c)] + a[r] * a[c]);
-          if (r == c)
-            R[at(r, c)] = R[at(r, c)] + diag;
-        }
+      hughes_winget(w, R);
       // rotated = (R sigma) R^T: the upper triangle, mirrored (exactly symmetric)
       T Rs[9];
       for (int r = 0; r < 3; ++r)
@@ -136,11 +111,11 @@ namespace sph::stress_batch
       return base + 9 * static_cast<std::int64_t>(i);
     }
 
-    void kinematics_scalar(const Fields &f, const std::int32_t *idx, Batch &b)
+    void kinematics_scalar(const Fields &f, Batch &b)
     {
       for (int l = 0; l < lanes; ++l)
       {
-        const std::int32_t i = idx[l];
+        const std::int32_t i = b.idx[l];
         double F[9], de[9], rot[9], trial[9], C[9], J;
         kinematics_of(tensor(f.F, i), tensor(f.L, i), tensor(f.F_prev, i), tensor(f.stress, i),
                       f.two_G, f.lambda, F, de, rot, trial, C, J);
@@ -149,18 +124,18 @@ namespace sph::stress_batch
           b.F[e][l]       = F[e];
           b.de[e][l]      = de[e];
           b.rotated[e][l] = rot[e];
-          b.trial[e][l]   = trial[e];
+          b.stress[e][l]  = trial[e];
           b.C[e][l]       = C[e];
         }
         b.J[l] = J;
       }
     }
 
-    void finish_scalar(const Fields &f, const std::int32_t *idx, const int n_valid, const Batch &b)
+    void finish_scalar(const Fields &f, const Batch &b)
     {
-      for (int l = 0; l < n_valid; ++l)
+      for (int l = 0; l < b.n; ++l)
       {
-        const std::int32_t i = idx[l];
+        const std::int32_t i = b.idx[l];
         double s[9], rot[9], de[9], C[9], Q[9], work;
         for (int e = 0; e < 9; ++e)
         {
@@ -214,28 +189,26 @@ namespace sph::stress_batch
       }
     }
 
-    __attribute__((target("avx2,fma"))) void kinematics_avx2(const Fields &f,
-                                                             const std::int32_t *idx, Batch &b)
+    __attribute__((target("avx2,fma"))) void kinematics_avx2(const Fields &f, Batch &b)
     {
       v4 A[9], L[9], Fp[9], s[9], F[9], de[9], rot[9], trial[9], C[9], J;
-      load_lanes(f.F, idx, A);
-      load_lanes(f.L, idx, L);
-      load_lanes(f.F_prev, idx, Fp);
-      load_lanes(f.stress, idx, s);
+      load_lanes(f.F, b.idx, A);
+      load_lanes(f.L, b.idx, L);
+      load_lanes(f.F_prev, b.idx, Fp);
+      load_lanes(f.stress, b.idx, s);
       kinematics_of(A, L, Fp, s, f.two_G, f.lambda, F, de, rot, trial, C, J);
       for (int e = 0; e < 9; ++e)
       {
         _mm256_store_pd(b.F[e], F[e]);
         _mm256_store_pd(b.de[e], de[e]);
         _mm256_store_pd(b.rotated[e], rot[e]);
-        _mm256_store_pd(b.trial[e], trial[e]);
+        _mm256_store_pd(b.stress[e], trial[e]);
         _mm256_store_pd(b.C[e], C[e]);
       }
       _mm256_store_pd(b.J, J);
     }
 
-    __attribute__((target("avx2,fma"))) void finish_avx2(const Fields &f, const std::int32_t *idx,
-                                                         const int n_valid, const Batch &b)
+    __attribute__((target("avx2,fma"))) void finish_avx2(const Fields &f, const Batch &b)
     {
       v4 s[9], rot[9], de[9], C[9], L[9], Q[9], F[9], work;
       for (int e = 0; e < 9; ++e)
@@ -246,19 +219,20 @@ namespace sph::stress_batch
         C[e]   = _mm256_load_pd(b.C[e]);
         F[e]   = _mm256_load_pd(b.F[e]);
       }
+      const std::int32_t *idx = b.idx;
       load_lanes(f.L, idx, L);
       const v4 V0 =
         _mm256_set_pd(f.volume0[idx[3]], f.volume0[idx[2]], f.volume0[idx[1]], f.volume0[idx[0]]);
       const v4 J = _mm256_load_pd(b.J);
       finish_of(s, rot, de, C, L, J, V0, f.corrected, work, Q);
-      store_lanes(s, idx, n_valid, f.stress);
-      store_lanes(F, idx, n_valid, f.F);
-      store_lanes(F, idx, n_valid, f.F_prev);
-      store_lanes(Q, idx, n_valid, f.Q);
+      store_lanes(s, idx, b.n, f.stress);
+      store_lanes(F, idx, b.n, f.F);
+      store_lanes(F, idx, b.n, f.F_prev);
+      store_lanes(Q, idx, b.n, f.Q);
       alignas(32) double w[lanes], V[lanes];
       _mm256_store_pd(w, work);
       _mm256_store_pd(V, V0 * J);
-      for (int l = 0; l < n_valid; ++l)
+      for (int l = 0; l < b.n; ++l)
       {
         const std::int32_t i = idx[l];
         f.work[i] += w[l];
@@ -268,12 +242,15 @@ namespace sph::stress_batch
     }
   } // namespace
 
-  void kinematics(const Fields &f, const std::int32_t *idx, Batch &b, const bool simd)
+  void kinematics(const Fields &f, const std::int32_t *idx, const int n, Batch &b, const bool simd)
   {
+    for (int l = 0; l < lanes; ++l) // a short batch repeats its last particle
+      b.idx[l] = idx[std::min(l, n - 1)];
+    b.n = n;
     if (simd)
-      kinematics_avx2(f, idx, b);
+      kinematics_avx2(f, b);
     else
-      kinematics_scalar(f, idx, b);
+      kinematics_scalar(f, b);
   }
 
   void prefetch_next(const Fields &f, const std::int32_t i, const std::int32_t n,
@@ -306,12 +283,11 @@ namespace sph::stress_batch
     lines(h + history_size * i, h + history_size * (last + 1), true);
   }
 
-  void finish(const Fields &f, const std::int32_t *idx, const int n_valid, const Batch &b,
-              const bool simd)
+  void finish(const Fields &f, const Batch &b, const bool simd)
   {
     if (simd)
-      finish_avx2(f, idx, n_valid, b);
+      finish_avx2(f, b);
     else
-      finish_scalar(f, idx, n_valid, b);
+      finish_scalar(f, b);
   }
 } // namespace sph::stress_batch

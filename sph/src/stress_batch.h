@@ -40,27 +40,30 @@ namespace sph::stress_batch
     bool corrected        = false;   ///< Q = P L (else P)
   };
 
-  /// What the model needs between the two halves, lane by lane: value e of lane l at [e][l].
+  /// One batch between the two halves, lane by lane: value e of lane l at [e][l].
   struct Batch
   {
+    std::int32_t idx[lanes]; ///< the lanes' particles (a short batch repeats its last one)
+    int n = 0;               ///< lanes with a particle of their own (written by finish)
     alignas(32) double F[9][lanes];
     alignas(32) double de[9][lanes];
     alignas(32) double rotated[9][lanes];
-    alignas(32) double trial[9][lanes];
     alignas(32) double C[9][lanes];
     alignas(32) double J[lanes];
-    alignas(32) double stress[9][lanes]; ///< the new stress, written by the caller
+    /// The new stress: the elastic trial after kinematics; the caller replaces it where the rock
+    /// model's update differs (where the trial is not surely elastic)
+    alignas(32) double stress[9][lanes];
   };
 
-  /// First half for the particles idx[0..3] (repeat an index to fill a short batch): F, de,
-  /// rotated, trial, C and J into b. `simd`: the AVX2 version (the caller checked the CPU).
-  void kinematics(const Fields &f, const std::int32_t *idx, Batch &b, bool simd);
+  /// First half for the particles idx[0..n), 1 <= n <= 4: b.idx, b.n, F, de, rotated, C, J and
+  /// the trial in b.stress. `simd`: the AVX2 version (the caller checked the CPU).
+  void kinematics(const Fields &f, const std::int32_t *idx, int n, Batch &b, bool simd);
 
   /// Asks the memory for the fields of particles [i, i + 4) (those below n) that the next batch
   /// reads and writes, and for their history records (`history_size` bytes each from `history`).
   void prefetch_next(const Fields &f, std::int32_t i, std::int32_t n, const void *history,
                      std::size_t history_size);
 
-  /// Second half: writes the results of the first n_valid lanes from b (b.stress set).
-  void finish(const Fields &f, const std::int32_t *idx, int n_valid, const Batch &b, bool simd);
+  /// Second half: writes the results of b's particles (b.stress final).
+  void finish(const Fields &f, const Batch &b, bool simd);
 } // namespace sph::stress_batch

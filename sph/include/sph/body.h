@@ -201,7 +201,7 @@ namespace sph
     void update_stress_updated_lagrangian();
     // 3-D TL: the stress update of particles idx[0..n) (n <= 4, A in p_.F) with `model`
     template <typename Model>
-    void update_stress_batch(const Model &model, std::int32_t *idx, int n);
+    void update_stress_batch(const Model &model, const std::int32_t *idx, int n);
     void pair_forces();            // one pass: f_int and f_pressure (loaded faces after it)
     // record_ of particles [begin, end) from the arrays (3-D, vectorised pair force)
     void pack_records(std::int32_t begin, std::int32_t end);
