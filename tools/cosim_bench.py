@@ -35,17 +35,21 @@ def fail(message):
 def run_case(cosim, prm, out, spacing, threads, optional=False):
     cmd = [cosim, "run", prm, "-o", out, "--quiet", "--force",
            "--set", "SPH/Particle spacing=%s" % spacing, "--set", "SPH/Threads=%d" % threads]
-    start = time.monotonic()
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.monotonic() - start
-    err = proc.stderr.read()
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if proc.returncode == 2 and optional:  # the case refuses that spacing
-        print("(%s at %s m: %s)" % (os.path.basename(prm), spacing, err.strip()))
+    # stderr to a file, not a pipe: nobody reads a pipe while os.wait4 waits, and a run that
+    # wrote more than the pipe holds would never end
+    with tempfile.TemporaryFile("w+") as err_file:
+        start = time.monotonic()
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err_file)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.monotonic() - start
+        err_file.seek(0)
+        err = err_file.read().strip()
+    code = os.waitstatus_to_exitcode(status)
+    if code == 2 and optional:  # the case refuses that spacing
+        print("(%s at %s m: %s)" % (os.path.basename(prm), spacing, err))
         return None
-    if proc.returncode != 0:
-        fail("%s failed (exit %d): %s" % (" ".join(cmd), proc.returncode, err.strip()))
+    if code != 0:
+        fail("%s failed (exit %d): %s" % (" ".join(cmd), code, err))
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     n, steps = int(s["n_particles"]), int(s["n_steps"])
