@@ -84,7 +84,7 @@ namespace sph::stress_batch
     /// The second half for one particle or four: the stress work increment and Q.
     template <typename T>
     SPH_INLINE void finish_of(const T *s, const T *rot, const T *de, const T *C, const T *L,
-                              const T J, const T V0, const bool corrected, T &work, T *Q)
+                              const T &J, const T &V0, const bool corrected, T &work, T *Q)
     {
       T sum = 0.5 * (rot[0] + s[0]) * de[0];
       for (int e = 1; e < 9; ++e)
