@@ -1,7 +1,8 @@
 // sph_bench: particle-steps per second and peak RSS of a 3-D cylinder in uniaxial compression
 // (FORM 8, Mohr-Coulomb, artificial viscosity, hourglass control). Not a test.
 // Usage: sph_bench [spacing_m = 1.2e-3] [steps = 200] [threads = 0 (all)] [mixed|double = mixed]
-// (the last: the pair force's precision, Parameters::single_precision)
+//                  [chunks = 0 (automatic)]
+// (the pair force's precision, Parameters::single_precision; the work units, Parameters::chunks)
 #include <sph/body.h>
 #include <sph/lattice.h>
 
@@ -27,11 +28,13 @@ int main(int argc, char **argv)
       return 2;
     }
   const bool single = precision == "mixed";
+  const int  chunks = argc > 5 ? std::atoi(argv[5]) : 0;
 
   sph::Parameters prm;
   prm.spacing   = dx;
   prm.n_threads = threads;
   prm.single_precision = single;
+  prm.chunks           = chunks;
   sph::MaterialParameters mat; // defaults: M1 basalt, Mohr-Coulomb
   mat.softening_strain = 2e-3;
 

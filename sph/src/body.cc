@@ -1,6 +1,7 @@
 #include <sph/body.h>
 #include <sph/kernels.h>
 
+#include "chunk_queue.h"
 #include "pair_kernel.h"
 #include "pair_kernel_mixed.h"
 #include "stress_batch.h"
@@ -117,6 +118,7 @@ namespace sph
     require(prm_.spacing > 0, "Parameters::spacing must be > 0 [m]");
     require(prm_.cslh > 0, "Parameters::cslh must be > 0 (LS-DYNA default 1.2)");
     require(prm_.tssfac > 0 && prm_.tssfac <= 1.0, "Parameters::tssfac must be in (0, 1]");
+    require(prm_.chunks >= 0, "Parameters::chunks must be >= 0 (0: automatic)");
     const int f = static_cast<int>(prm_.form);
     require(f == 0 || f == 1 || f == 7 || f == 8, "Parameters::form must be 0, 1, 7 or 8");
     require(prm_.av_alpha >= 0 && prm_.av_beta >= 0, "artificial viscosity must be >= 0");
@@ -268,21 +270,27 @@ namespace sph
       ++pair_begin_[pairs_.first[p] + 1];
     for (std::size_t i = 0; i < n; ++i)
       pair_begin_[i + 1] += pair_begin_[i];
-    // ranges of equal work: a pair is one unit, a particle per_particle units (its stress
-    // update plus its loop and tail-group overhead; surface ranges hold more particles per
+    // chunks of equal work: a pair is one unit, a particle per_particle units (its stress
+    // update plus its loop and tail-group overhead; surface chunks hold more particles per
     // pair). 8 was measured, not derived: `valgrind --tool=callgrind --separate-threads=yes
-    // sph_bench 0.0025 10 2` put the two threads' force passes within 1 % and their stress
-    // passes 6 % apart with the per-particle Eigen stress update; with the batched one
-    // (stress_batch.h) 8 is still the best of 2, 4, 8 and 12 (`sph_bench 0.00125 40 2`, 6
-    // interleaved rounds: median walls 2.15, 2.11, 1.98, 2.15 s)
-    const int         T            = n_threads_;
-    constexpr double  per_particle = 8.0;
-    const double      total        = static_cast<double>(n_p) + per_particle * n;
-    range_begin_.assign(T + 1, static_cast<std::int32_t>(n));
-    range_begin_[0] = 0;
-    for (int t = 1; t < T; ++t)
+    // sph_bench 0.0025 10 2` put two static ranges' force passes within 1 % and their stress
+    // passes 6 % apart with the per-particle Eigen stress update, and with the batched one
+    // (stress_batch.h) 8 was still the best of 2, 4, 8 and 12.
+    // The number of chunks depends on the particle count only (the results then do not depend
+    // on the thread count): enough for a thread that runs slower to hand work over (a chunk is
+    // at most 1/max_chunks of a pass), few enough that the cross pairs stay few (each cut
+    // adds the pairs across it: see chunk_begin_ in body.h).
+    constexpr double      per_particle    = 8.0;
+    constexpr std::size_t chunk_particles = 128, max_chunks = 16;
+    const std::size_t     K =
+      prm_.chunks > 0 ? std::min<std::size_t>(prm_.chunks, std::max<std::size_t>(n, 1)) :
+                        std::clamp<std::size_t>(n / chunk_particles, 1, max_chunks);
+    const double          total = static_cast<double>(n_p) + per_particle * n;
+    chunk_begin_.assign(K + 1, static_cast<std::int32_t>(n));
+    chunk_begin_[0] = 0;
+    for (std::size_t c = 1; c < K; ++c)
       {
-        const double target = total * t / T;
+        const double target = total * c / K;
         std::size_t  lo = 0, hi = n; // first i whose work before it reaches the target
         while (lo < hi)
           {
@@ -292,43 +300,52 @@ namespace sph
             else
               hi = mid;
           }
-        range_begin_[t] = static_cast<std::int32_t>(lo);
+        chunk_begin_[c] = static_cast<std::int32_t>(lo);
       }
-    cross_.assign(T, {});
-    cross_share_.assign(T, {});
-    for (int t = 0; t < T; ++t)
+    // the cross pairs (ascending pair order, so chunk by chunk) and, per chunk, those whose
+    // second particle it holds (ascending k: ascending first particle)
+    std::vector<std::int32_t> chunk_of(n);
+    for (std::size_t c = 0; c < K; ++c)
+      std::fill(chunk_of.begin() + chunk_begin_[c], chunk_of.begin() + chunk_begin_[c + 1],
+                static_cast<std::int32_t>(c));
+    std::vector<std::int32_t> cross_pair; // the cross pairs in ascending order
+    cross_begin_.assign(K + 1, 0);
+    incoming_begin_.assign(K + 1, 0);
+    for (std::size_t c = 0; c < K; ++c)
       {
-        const std::int32_t e = range_begin_[t + 1];
-        for (std::int32_t p = pair_begin_[range_begin_[t]]; p < pair_begin_[e]; ++p)
+        const std::int32_t e = chunk_begin_[c + 1];
+        for (std::int32_t p = pair_begin_[chunk_begin_[c]]; p < pair_begin_[e]; ++p)
           if (pairs_.second[p] >= e)
-            cross_[t].push_back(p);
-        // room for the larger share: a dim x dim tensor (F sums) or a force and two powers
-        // (and for a last group of four pairs written whole by the vectorised pair force)
-        cross_share_[t].resize((cross_[t].size() + 3) * std::max(dim * dim, dim + 2));
+            {
+              cross_pair.push_back(p);
+              ++incoming_begin_[chunk_of[pairs_.second[p]] + 1];
+            }
+        cross_begin_[c + 1] = static_cast<std::int32_t>(cross_pair.size());
       }
-  }
-
-  template <int dim>
-  template <typename F>
-  void Body<dim>::for_cross_slices(const int t, F &&f) const
-  {
-    // the lists end to end, each padded to a multiple of four; thread t takes the t-th of
-    // n_threads_ equal parts, cut at multiples of four
-    const auto   pad   = [](const std::size_t k) { return (k + 3) / 4 * 4; };
-    std::size_t  total = 0;
-    for (const auto &list : cross_)
-      total += pad(list.size());
-    const std::size_t T = n_threads_;
-    const std::size_t b = total * t / T / 4 * 4;
-    const std::size_t e = t + 1 == n_threads_ ? total : total * (t + 1) / T / 4 * 4;
-    std::size_t       offset = 0;
-    for (std::size_t s = 0; s < cross_.size(); ++s)
+    for (std::size_t c = 0; c < K; ++c)
+      incoming_begin_[c + 1] += incoming_begin_[c];
+    // what j's chunk reads of each, contiguous in its order (the pairs themselves are spread
+    // over the pair arrays: a cache miss each)
+    const std::size_t n_cross = cross_pair.size();
+    const bool        tl      = total_lagrangian();
+    incoming_.resize(n_cross);
+    incoming_i_.resize(tl ? n_cross : 0);
+    incoming_j_.resize(n_cross);
+    incoming_g_.resize(tl ? n_cross : 0);
+    std::vector<std::int32_t> fill(incoming_begin_.begin(), incoming_begin_.end() - 1);
+    for (std::size_t k = 0; k < n_cross; ++k)
       {
-        const std::size_t lo = std::max(b, offset), hi = std::min(e, offset + cross_[s].size());
-        if (lo < hi)
-          f(static_cast<int>(s), lo - offset, hi - offset);
-        offset += pad(cross_[s].size());
+        const std::int32_t p = cross_pair[k], j = pairs_.second[p];
+        const std::int32_t at = fill[chunk_of[j]]++;
+        incoming_[at]         = static_cast<std::int32_t>(k);
+        incoming_j_[at]       = j;
+        if (tl)
+          {
+            incoming_i_[at] = pairs_.first[p];
+            incoming_g_[at] = grad_w_[p];
+          }
       }
+    force_share_.resize(dim * n_cross);
   }
 
   template <int dim>
@@ -431,56 +448,52 @@ namespace sph
     const bool                      simd = simd_;
     const std::vector<double>      &V0  = p_.volume0;
     const std::vector<Vector<dim>> &x   = p_.x;
-    constexpr int                   dd  = dim * dim;
+    const long                      n   = static_cast<long>(p_.size());
+    const long                      n_chunks = static_cast<long>(chunk_begin_.size()) - 1;
+    constexpr int                   dd       = dim * dim;
+    ChunkQueue queue;
+    queue.reset(static_cast<int>(n_chunks), n_threads_);
     std::visit(
       [&](const auto &model) {
 #pragma omp parallel num_threads(n_threads_)
         {
-          const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
-          // shares of the second particle of the pairs that cross into a later range (all
-          // threads take a slice: the last range has none of its own)
-          for (int t = t0; t < n_threads_; t += nt)
-            for_cross_slices(t, [&](const int s, const std::size_t kb, const std::size_t ke) {
-              double *share = cross_share_[s].data() + dd * kb;
-              for (std::size_t k = kb; k < ke; ++k)
-                {
-                  const std::int32_t p = cross_[s][k];
-                  const int          i = pairs_.first[p], j = pairs_.second[p];
-                  const Vector<dim> &g = grad_w_[p];
-                  for (int r = 0; r < dim; ++r)
-                    {
-                      const double d = -V0[i] * (x[i][r] - x[j][r]);
-                      for (int c = 0; c < dim; ++c)
-                        *share++ = d * g[c];
-                    }
-                }
-            });
-          if (simd) // (x, V0) of the particles in range, read by all as second particles
-            for (int t = t0; t < n_threads_; t += nt)
-              for (std::int32_t i = range_begin_[t]; i < range_begin_[t + 1]; ++i)
+          if (simd) // (x, V0) of every particle, read by all chunks as second particles
+            {
+#pragma omp for schedule(static)
+              for (long i = 0; i < n; ++i)
                 {
                   double *r = &position_volume_[4 * static_cast<std::size_t>(i)];
                   for (int d = 0; d < dim; ++d)
                     r[d] = x[i][d];
                   r[3] = V0[i];
                 }
-#pragma omp barrier
-          for (int t = t0; t < n_threads_; t += nt)
+            }
+          const int t = omp_get_thread_num();
+          for (int chunk; (chunk = queue.next(t)) >= 0;)
             {
-              const std::int32_t b = range_begin_[t], e = range_begin_[t + 1];
+              const std::int32_t b = chunk_begin_[chunk], e = chunk_begin_[chunk + 1];
               for (std::int32_t i = b; i < e; ++i)
                 p_.F[i].setZero();
-              for (int s = 0; s < t; ++s)
-                for (std::size_t k = 0; k < cross_[s].size(); ++k)
-                  {
-                    const std::int32_t j = pairs_.second[cross_[s][k]];
-                    if (j < b || j >= e)
-                      continue;
-                    const double *share = &cross_share_[s][dd * k];
-                    for (int r = 0; r < dim; ++r)
+              // the shares of j of the pairs from earlier chunks (ascending pair order):
+              // V0_i (x_j - x_i) (x) g, as -V0_i (x_i - x_j) (the same bits)
+              const std::int32_t kb = incoming_begin_[chunk], ke = incoming_begin_[chunk + 1];
+              if constexpr (dim == 3)
+                if (simd)
+                  pair_kernel::incoming_gradient(
+                    position_volume_.data(), incoming_i_.data() + kb, incoming_j_.data() + kb,
+                    reinterpret_cast<const double *>(incoming_g_.data() + kb), ke - kb,
+                    p_.F[0].data());
+              for (std::int32_t k = kb; k < (simd ? kb : ke); ++k)
+                {
+                  const std::int32_t i = incoming_i_[k], j = incoming_j_[k];
+                  const Vector<dim> &g = incoming_g_[k];
+                  for (int r = 0; r < dim; ++r)
+                    {
+                      const double d = -V0[i] * (x[i][r] - x[j][r]);
                       for (int c = 0; c < dim; ++c)
-                        p_.F[j](r, c) += share[r * dim + c];
-                  }
+                        p_.F[j](r, c) += d * g[c];
+                    }
+                }
               [[maybe_unused]] std::int32_t batch[stress_batch::lanes];
               [[maybe_unused]] int          n_batch = 0;
               for (std::int32_t i = b; i < e; ++i)
@@ -532,7 +545,7 @@ namespace sph
                           for (int r = 0; r < dim; ++r)
                             for (int c = 0; c < dim; ++c)
                               a[r][c] += di[r] * g[c];
-                          if (j < e) // else: added by j's owner (cross_)
+                          if (j < e) // else: added by j's chunk (incoming_)
                             {
                               Tensor<dim> &Aj = p_.F[j];
                               for (int r = 0; r < dim; ++r)
@@ -777,11 +790,10 @@ namespace sph
       power    = s_av * vr; // <= 0: rate of work of the viscous pair on the particles
       hg_power = s_hg * vr;
     };
-    // dissipation powers summed per range in pair order, ranges added in order: deterministic
-    // for a given thread count
-    std::vector<double> partial(2 * n_threads_, 0.0);
-    constexpr int       share_size = dim + 2; // force, viscous power, hourglass power
-    static_assert(share_size == pair_kernel::out_size || dim != 3);
+    // dissipation powers summed per chunk in pair order, chunks added in order (the same bits
+    // with any number of threads)
+    std::vector<double> partial(2 * (chunk_begin_.size() - 1), 0.0);
+    static_assert(dim + 2 == pair_kernel::out_size || dim != 3); // force and two powers
     // the kernel reads Eigen's small vectors and matrices as plain doubles
     static_assert(sizeof(Vector<dim>) == dim * sizeof(double) &&
                   sizeof(Tensor<dim>) == dim * dim * sizeof(double));
@@ -805,70 +817,46 @@ namespace sph
     margs.beta      = beta;
     margs.c         = c;
     margs.av        = av;
+    const long n_chunks = static_cast<long>(chunk_begin_.size()) - 1;
+    const long n        = static_cast<long>(p_.size());
+    ChunkQueue queue, gather_queue;
+    queue.reset(static_cast<int>(n_chunks), n_threads_);
+    gather_queue.reset(static_cast<int>(n_chunks), n_threads_);
 #pragma omp parallel num_threads(n_threads_)
     {
-      const int t0 = omp_get_thread_num(), nt = omp_get_num_threads();
-      if (simd)
+      if (simd) // the records of every particle, read by all chunks as second particles
         {
-          for (int t = t0; t < n_threads_; t += nt)
-            pack_records(range_begin_[t], range_begin_[t + 1]);
+          std::size_t b, e;
+          chunk(static_cast<std::size_t>(n), omp_get_thread_num(), omp_get_num_threads(), b, e);
+          pack_records(static_cast<std::int32_t>(b), static_cast<std::int32_t>(e));
 #pragma omp barrier
         }
-      // the cross-range pairs, a slice per thread (slices start at multiples of four: the
-      // vectorised force writes whole groups, and only a list's last group is short)
-      for (int t = t0; t < n_threads_; t += nt)
-        for_cross_slices(t, [&](const int s, const std::size_t kb, const std::size_t ke) {
-          double *share = cross_share_[s].data() + share_size * kb;
-          if (mixed)
-            pair_kernel::mixed::list_forces(margs, cross_[s].data() + kb,
-                                            static_cast<int>(ke - kb), pairs_.first.data(), second,
-                                            share);
-          else if (simd)
-            pair_kernel::list_forces(args, cross_[s].data() + kb, static_cast<int>(ke - kb),
-                                     pairs_.first.data(), second, share);
-          else
-            for (std::size_t k = kb; k < ke; ++k)
-              {
-                const std::int32_t p = cross_[s][k];
-                double             power, hg_power, f[dim];
-                pair_force(p, side(pairs_.first[p]), pairs_.second[p], f, power, hg_power);
-                for (int d = 0; d < dim; ++d)
-                  *share++ = f[d];
-                *share++ = power;
-                *share++ = hg_power;
-              }
-        });
-#pragma omp barrier
-      for (int t = t0; t < n_threads_; t += nt)
+      const int t = omp_get_thread_num();
+      for (int chunk; (chunk = queue.next(t)) >= 0;)
         {
-          const std::int32_t b = range_begin_[t], e = range_begin_[t + 1];
+          const std::int32_t b = chunk_begin_[chunk], e = chunk_begin_[chunk + 1];
           for (std::int32_t i = b; i < e; ++i)
             p_.f_int[i].setZero();
-          for (int s = 0; s < t; ++s)
-            for (std::size_t k = 0; k < cross_[s].size(); ++k)
-              {
-                const std::int32_t j = pairs_.second[cross_[s][k]];
-                if (j >= b && j < e)
-                  for (int d = 0; d < dim; ++d)
-                    p_.f_int[j][d] -= cross_share_[s][share_size * k + d];
-              }
-          double        sum_power = 0, sum_hg_power = 0;
-          const double *share     = cross_share_[t].data();
+          double  sum_power = 0, sum_hg_power = 0;
+          double *share     = force_share_.data() + dim * static_cast<std::size_t>(cross_begin_[chunk]);
           for (std::int32_t i = b; i < e; ++i)
             {
               Vector<dim> fi = f_int[i]; // its terms as second particle so far
               if (simd)
                 {
-                  // i's pairs four at a time: their sum on i in lanes (a fixed order), the
-                  // second particles' shares subtracted pair by pair (each j in ascending i)
+                  // i's pairs four (eight) at a time: their sum on i in lanes (a fixed order),
+                  // the second particles' shares subtracted pair by pair (each j in ascending
+                  // i), those of a later chunk written to the share
                   double sum[pair_kernel::out_size];
                   if (mixed)
-                    pair_kernel::mixed::particle_forces(margs, i, pair_begin[i],
-                                                        pair_begin[i + 1], second, e,
-                                                        reinterpret_cast<double *>(f_int), sum);
+                    share = pair_kernel::mixed::particle_forces(
+                      margs, i, pair_begin[i], pair_begin[i + 1], second, e,
+                      reinterpret_cast<double *>(f_int), share, sum);
                   else
-                    pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1],
-                                                 second, e, reinterpret_cast<double *>(f_int), sum);
+                    share = pair_kernel::particle_forces(args, i, pair_begin[i], pair_begin[i + 1],
+                                                         second, e,
+                                                         reinterpret_cast<double *>(f_int), share,
+                                                         sum);
                   for (int d = 0; d < dim; ++d)
                     fi[d] += sum[d];
                   sum_power += sum[dim];
@@ -880,27 +868,21 @@ namespace sph
                   for (std::int32_t p = pair_begin[i]; p < pair_begin[i + 1]; ++p)
                     {
                       const std::int32_t j = second[p];
+                      double             power, hg_power, f[dim];
+                      pair_force(p, si, j, f, power, hg_power);
+                      for (int d = 0; d < dim; ++d)
+                        fi[d] += f[d];
                       if (j < e)
                         {
-                          double power, hg_power, f[dim];
-                          pair_force(p, si, j, f, power, hg_power);
                           Vector<dim> &fj = f_int[j];
                           for (int d = 0; d < dim; ++d)
-                            {
-                              fi[d] += f[d];
-                              fj[d] -= f[d];
-                            }
-                          sum_power += power;
-                          sum_hg_power += hg_power;
+                            fj[d] -= f[d];
                         }
-                      else // computed before the barrier (cross_), in this order
-                        {
-                          for (int d = 0; d < dim; ++d)
-                            fi[d] += share[d];
-                          sum_power += share[dim];
-                          sum_hg_power += share[dim + 1];
-                          share += share_size;
-                        }
+                      else // subtracted by j's chunk after all chunks (incoming_)
+                        for (int d = 0; d < dim; ++d)
+                          *share++ = f[d];
+                      sum_power += power;
+                      sum_hg_power += hg_power;
                     }
                 }
               f_int[i] = fi;
@@ -915,16 +897,27 @@ namespace sph
               else
                 p_.f_pressure[i].setZero();
             }
-          partial[2 * t]     = sum_power;
-          partial[2 * t + 1] = sum_hg_power;
+          partial[2 * chunk]     = sum_power;
+          partial[2 * chunk + 1] = sum_hg_power;
         }
+#pragma omp barrier
+      // (every chunk's shares are written) the shares of the pairs from earlier chunks,
+      // subtracted from their j in ascending pair order
+      for (int chunk; (chunk = gather_queue.next(t)) >= 0;)
+        for (std::int32_t k = incoming_begin_[chunk]; k < incoming_begin_[chunk + 1]; ++k)
+          {
+            const std::int32_t m  = incoming_[k];
+            Vector<dim>       &fj = f_int[incoming_j_[k]];
+            for (int d = 0; d < dim; ++d)
+              fj[d] -= force_share_[dim * static_cast<std::size_t>(m) + d];
+          }
     }
     viscous_power_   = 0;
     hourglass_power_ = 0;
-    for (int t = 0; t < n_threads_; ++t)
+    for (long chunk = 0; chunk < n_chunks; ++chunk)
       {
-        viscous_power_ += partial[2 * t];
-        hourglass_power_ += partial[2 * t + 1];
+        viscous_power_ += partial[2 * chunk];
+        hourglass_power_ += partial[2 * chunk + 1];
       }
     if (!face_columns_.empty())
       loaded_face_forces();

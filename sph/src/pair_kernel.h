@@ -4,8 +4,7 @@
 /// it. Private to sph/src. Same physics as the scalar pair force in body.cc (stress, Monaghan
 /// viscosity, Ganzenmueller hourglass control); the two differ by round-off only. Every pair goes
 /// through one sequence of IEEE operations (the file is built without contraction), whatever its
-/// lane or its loop: a pair's force has the same bits in the in-range and the cross-range loops,
-/// so the results stay independent of the thread count.
+/// lane: the results stay independent of the thread count.
 
 #include <cstdint>
 
@@ -50,24 +49,21 @@ namespace sph::pair_kernel
   /// True where the CPU runs AVX2 and FMA.
   bool avx2_available();
 
-  /// Pairs list[0..n) (indices into first, second and the per-pair arrays) to out[out_size * k];
-  /// out must hold out_size * (n + 3) doubles (the last group of four is written whole).
-  void list_forces(const Args &a, const std::int32_t *list, int n, const std::int32_t *first,
-                   const std::int32_t *second, double *out);
-
   /// The pairs [pb, pe) of particle i (consecutive, second particle second[p]), four at a time:
   /// subtracts the force on i of each pair from its second particle's f_int (3 per particle)
-  /// where j < e, pair by pair in pair order, and returns the sums over all the pairs of the
-  /// force on i (sum[0..2]), the viscous and the hourglass power (sum[3], sum[4]), each in a
-  /// fixed order (4 lanes).
-  void particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
-                       const std::int32_t *second, std::int32_t e, double *f_int, double *sum);
+  /// where j < e, pair by pair in pair order, and writes the force on i of each pair whose
+  /// j >= e to share (3 doubles each, in pair order; returns the end of what it wrote). Sums
+  /// over all the pairs the force on i (sum[0..2]), the viscous and the hourglass power (sum[3],
+  /// sum[4]), each in a fixed order (4 lanes).
+  double *particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
+                          const std::int32_t *second, std::int32_t e, double *f_int, double *share,
+                          double *sum);
 
   /// The deformation-gradient sums of total Lagrangian SPH over the pairs [pb, pe) of particle i
   /// (A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij, column-major), four pairs at a time.
   /// position_volume holds (x, V0) per particle (4 doubles). Adds the share of each second
   /// particle j < e, V0_i (x_j - x_i) (x) g, to a[9 j ..] in pair order (a product rounded, then
-  /// one addition per entry, as the cross-range shares are); returns i's own sum in own[0..8]
+  /// one addition per entry, as Body adds the shares of pairs from earlier chunks); returns i's own sum in own[0..8]
   /// (a fixed order: lanes, then lane sums).
   /// The gradients are read from grad_w (3 doubles per pair) or, where pair_float is not null,
   /// from its 4 floats per pair (the gradient, then the hourglass factor; mixed precision, whose
@@ -76,4 +72,11 @@ namespace sph::pair_kernel
                          const float *pair_float, std::int32_t i, std::int32_t pb,
                          std::int32_t pe, const std::int32_t *second, std::int32_t e, double *a,
                          double *own);
+
+  /// The terms of the pairs k in [0, n) in the deformation-gradient sums of their second
+  /// particles, in order: a[9 j[k] ..] += d (x) g_k with d = -V0_i (x_i - x_j) (= V0_i (x_j -
+  /// x_i)), i = i[k], g_k = g[3 k .. 3 k + 2]; position_volume as in particle_gradient. The
+  /// same products and sums as Body's scalar loop over the pairs from earlier chunks.
+  void incoming_gradient(const double *position_volume, const std::int32_t *i,
+                         const std::int32_t *j, const double *g, std::int32_t n, double *a);
 } // namespace sph::pair_kernel

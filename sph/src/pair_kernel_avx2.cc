@@ -223,45 +223,10 @@ namespace sph::pair_kernel
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   }
 
-  __attribute__((target("avx2,fma"))) void list_forces(const Args &a, const std::int32_t *list,
-                                                       const int n, const std::int32_t *first,
-                                                       const std::int32_t *second, double *out)
-  {
-    for (int k = 0; k < n; k += 4)
-    {
-      // a short last group repeats its last pair; those lanes' outputs are not read
-      std::int32_t p[4], i[4], j[4];
-      for (int l = 0; l < 4; ++l)
-      {
-        p[l] = list[std::min(k + l, n - 1)];
-        i[l] = first[p[l]];
-        j[l] = second[p[l]];
-      }
-      const Gathered la(a.record, i), lb(a.record, j);
-      v4 g[3];
-      pair_vectors(a.grad_w, p, g);
-      const v4 factor = a.hg_factor ? _mm256_set_pd(a.hg_factor[p[3]], a.hg_factor[p[2]],
-                                                    a.hg_factor[p[1]], a.hg_factor[p[0]])
-                                    : _mm256_setzero_pd();
-      const Lanes4 r  = pair(a, la, lb, g, factor);
-      // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its
-      // hourglass power
-      v4 rows[4];
-      transpose(r.force[0], r.force[1], r.force[2], r.power, rows);
-      alignas(32) double hp[4];
-      _mm256_store_pd(hp, r.hg_power);
-      double *o = out + out_size * k;
-      for (int m = 0; m < 4; ++m)
-      {
-        _mm256_storeu_pd(o + out_size * m, rows[m]);
-        o[out_size * m + 4] = hp[m];
-      }
-    }
-  }
-
-  __attribute__((target("avx2,fma"))) void
+  __attribute__((target("avx2,fma"))) double *
   particle_forces(const Args &a, const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
-                  const std::int32_t *second, const std::int32_t e, double *f_int, double *sum)
+                  const std::int32_t *second, const std::int32_t e, double *f_int, double *share,
+                  double *sum)
   {
     const Broadcast la(a.record, i);
     const v4 zero = _mm256_setzero_pd();
@@ -280,15 +245,22 @@ namespace sph::pair_kernel
       v4 f[4];
       transpose(r.force[0], r.force[1], r.force[2], zero, f);
       for (int m = 0; m < gr.n_valid; ++m)
-        if (gr.j[m] < e) // j >= e: subtracted by j's owner (cross-range share)
+        if (gr.j[m] < e)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(gr.j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
           fj[2] -= _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
         }
+        else // j in a later chunk: the force to the share, subtracted from f_int[j] later
+        {
+          _mm_storeu_pd(share, _mm256_castpd256_pd128(f[m]));
+          share[2] = _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
+          share += 3;
+        }
     }
     for (int c = 0; c < 5; ++c)
       sum[c] = lane_sum(acc[c]);
+    return share;
   }
 
   namespace
@@ -351,7 +323,7 @@ namespace sph::pair_kernel
       alignas(32) double last[4];            // entry 8 of each pair
       _mm256_store_pd(last, t[8]);
       for (int m = 0; m < n_valid; ++m)
-        if (j[m] < e) // j >= e: added by j's owner (cross-range share)
+        if (j[m] < e) // j >= e: added by j's chunk (Body::incoming_)
         {
           double *aj = a + 9 * static_cast<std::int64_t>(j[m]);
           _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), lo[m]));
@@ -394,5 +366,31 @@ namespace sph::pair_kernel
     }
     for (int c = 0; c < 9; ++c)
       own[c] = lane_sum(acc[c]);
+  }
+
+  __attribute__((target("avx2,fma"))) void
+  incoming_gradient(const double *position_volume, const std::int32_t *i, const std::int32_t *j,
+                    const double *g, const std::int32_t n, double *a)
+  {
+    const v4 sign = _mm256_set1_pd(-0.0);
+    for (std::int32_t k = 0; k < n; ++k)
+    {
+      const double *pi = position_volume + 4 * static_cast<std::int64_t>(i[k]);
+      const double *pj = position_volume + 4 * static_cast<std::int64_t>(j[k]);
+      // lanes d0, d1, d2 (and a fourth, unused)
+      const v4 d = _mm256_mul_pd(_mm256_xor_pd(_mm256_broadcast_sd(pi + 3), sign),
+                                 _mm256_sub_pd(_mm256_loadu_pd(pi), _mm256_loadu_pd(pj)));
+      // column-major entries 0..3 = (d0 g0, d1 g0, d2 g0, d0 g1), 4..7 = (d1 g1, d2 g1, d0 g2,
+      // d1 g2), 8 = d2 g2
+      const double *gk  = g + 3 * static_cast<std::int64_t>(k);
+      const v4      d_a = _mm256_permute4x64_pd(d, _MM_SHUFFLE(0, 2, 1, 0));
+      const v4      d_b = _mm256_permute4x64_pd(d, _MM_SHUFFLE(1, 0, 2, 1));
+      const v4      g_a = _mm256_setr_pd(gk[0], gk[0], gk[0], gk[1]);
+      const v4      g_b = _mm256_setr_pd(gk[1], gk[1], gk[2], gk[2]);
+      double       *aj  = a + 9 * static_cast<std::int64_t>(j[k]);
+      _mm256_storeu_pd(aj, _mm256_add_pd(_mm256_loadu_pd(aj), _mm256_mul_pd(d_a, g_a)));
+      _mm256_storeu_pd(aj + 4, _mm256_add_pd(_mm256_loadu_pd(aj + 4), _mm256_mul_pd(d_b, g_b)));
+      aj[8] += _mm_cvtsd_f64(_mm256_extractf128_pd(d, 1)) * gk[2];
+    }
   }
 } // namespace sph::pair_kernel

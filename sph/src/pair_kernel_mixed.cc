@@ -217,50 +217,10 @@ namespace sph::pair_kernel::mixed
     }
   } // namespace
 
-  __attribute__((target("avx2,fma"))) void list_forces(const Args &a, const std::int32_t *list,
-                                                       const int n, const std::int32_t *first,
-                                                       const std::int32_t *second, double *out)
-  {
-    for (int k = 0; k < n; k += 8)
-    {
-      // a short last group repeats its last pair; only the real pairs' outputs are written
-      std::int32_t p[8], i[8], j[8];
-      for (int l = 0; l < 8; ++l)
-      {
-        p[l] = list[std::min(k + l, n - 1)];
-        i[l] = first[p[l]];
-        j[l] = second[p[l]];
-      }
-      v8 g[pair_size];
-      pair_data(a.pair, p, g);
-      const Gathered la(a.record, i), lb(a.record, j);
-      const Lanes8   r = pair(a, la, lb, g);
-      // out[5 m .. 5 m + 3] = (force, viscous power) of pair k + m, out[5 m + 4] its hourglass
-      // power, in double (exact)
-      v4 f_lo[3], f_hi[3], p_lo, p_hi, h_lo, h_hi;
-      for (int d = 0; d < 3; ++d)
-        widen(r.force[d], f_lo[d], f_hi[d]);
-      widen(r.power, p_lo, p_hi);
-      widen(r.hg_power, h_lo, h_hi);
-      v4 rows[8];
-      transpose(f_lo[0], f_lo[1], f_lo[2], p_lo, rows);
-      transpose(f_hi[0], f_hi[1], f_hi[2], p_hi, rows + 4);
-      alignas(32) double hp[8];
-      _mm256_store_pd(hp, h_lo);
-      _mm256_store_pd(hp + 4, h_hi);
-      double   *o     = out + out_size * k;
-      const int valid = std::min(8, n - k);
-      for (int m = 0; m < valid; ++m)
-      {
-        _mm256_storeu_pd(o + out_size * m, rows[m]);
-        o[out_size * m + 4] = hp[m];
-      }
-    }
-  }
-
-  __attribute__((target("avx2,fma"))) void
+  __attribute__((target("avx2,fma"))) double *
   particle_forces(const Args &a, const std::int32_t i, const std::int32_t pb, const std::int32_t pe,
-                  const std::int32_t *second, const std::int32_t e, double *f_int, double *sum)
+                  const std::int32_t *second, const std::int32_t e, double *f_int, double *share,
+                  double *sum)
   {
     const Broadcast la(a.record, i);
     const v4 zero = _mm256_setzero_pd();
@@ -305,14 +265,21 @@ namespace sph::pair_kernel::mixed
       transpose(f_lo[0], f_lo[1], f_lo[2], zero, f);
       transpose(f_hi[0], f_hi[1], f_hi[2], zero, f + 4);
       for (int m = 0; m < n_valid; ++m)
-        if (j[m] < e) // j >= e: subtracted by j's owner (cross-range share)
+        if (j[m] < e)
         {
           double *fj = f_int + 3 * static_cast<std::int64_t>(j[m]);
           _mm_storeu_pd(fj, _mm_sub_pd(_mm_loadu_pd(fj), _mm256_castpd256_pd128(f[m])));
           fj[2] -= _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
         }
+        else // j in a later chunk: the force to the share, subtracted from f_int[j] later
+        {
+          _mm_storeu_pd(share, _mm256_castpd256_pd128(f[m]));
+          share[2] = _mm_cvtsd_f64(_mm256_extractf128_pd(f[m], 1));
+          share += 3;
+        }
     }
     for (int c = 0; c < 5; ++c)
       sum[c] = lane_sum(acc[c]);
+    return share;
   }
 } // namespace sph::pair_kernel::mixed

@@ -56,13 +56,11 @@ namespace sph::pair_kernel::mixed
   /// hourglass power [W].
   constexpr int out_size = 5;
 
-  /// Pairs list[0..n) to out[out_size * k] (exactly n outputs written).
-  void list_forces(const Args &a, const std::int32_t *list, int n, const std::int32_t *first,
-                   const std::int32_t *second, double *out);
-
   /// As pair_kernel::particle_forces, eight pairs at a time: subtracts the force on i of each
-  /// pair [pb, pe) of particle i from its second particle's f_int where j < e (pair order) and
+  /// pair [pb, pe) of particle i from its second particle's f_int where j < e (pair order),
+  /// writes it to share where j >= e (3 doubles each; returns the end of what it wrote) and
   /// returns the sums over all the pairs of the force on i and of the two powers in sum[0..4].
-  void particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
-                       const std::int32_t *second, std::int32_t e, double *f_int, double *sum);
+  double *particle_forces(const Args &a, std::int32_t i, std::int32_t pb, std::int32_t pe,
+                          const std::int32_t *second, std::int32_t e, double *f_int, double *share,
+                          double *sum);
 } // namespace sph::pair_kernel::mixed

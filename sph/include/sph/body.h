@@ -189,10 +189,7 @@ namespace sph
     bool total_lagrangian() const;
     bool corrected() const;
     void build_pairs();            // pairs_, grad_w_ at the current positions, partition_pairs
-    void partition_pairs();        // pair_begin_, range_begin_, cross_ from pairs_
-    // f(s, k_begin, k_end) for thread t's slice of the cross-range pair lists cross_[s]
-    template <typename F>
-    void for_cross_slices(int t, F &&f) const;
+    void partition_pairs();        // pair_begin_, chunk_begin_, cross_begin_, incoming_* from pairs_
     void compute_correction();     // L from grad_w_
     void compute_area_vectors();   // area0_ from grad_w_
     // moves the normal parts of v in each loaded-face column onto its outer particle
@@ -222,15 +219,28 @@ namespace sph
     // The pair loops run over the pairs of each particle i as first (pairs_ is sorted by first):
     // the share of i is summed in registers and that of the second particle j is added to j's
     // sum in memory, so every pair is visited once per pass and no per-pair result is stored.
-    // Thread t owns the particles [range_begin_[t], range_begin_[t+1]) (balanced by pairs) and
-    // writes only their sums; a pair whose j lies in a later range (cross_[t], few: particles
-    // are in Morton order) has its share of j computed first and added by j's owner before
-    // its own pairs. Each sum thus receives its terms in ascending pair order, as a per-particle
-    // gather would: the results do not depend on the number of threads.
-    std::vector<std::int32_t>              pair_begin_;  // per particle: its first pair as first
-    std::vector<std::int32_t>              range_begin_; // per thread: its first particle
-    std::vector<std::vector<std::int32_t>> cross_;       // per thread: its pairs into later ranges
-    std::vector<std::vector<double>>       cross_share_; // per thread: their shares of j (scratch)
+    // The particles are cut into chunks of equal work (chunk_begin_, a number set by the
+    // particle count alone), which the threads take one at a time as they finish (dynamic
+    // scheduling: a thread on a slower core simply takes fewer). A chunk's pass writes only its
+    // own particles' sums; a pair whose j lies in a later chunk (a cross pair:
+    // particles are in Morton order, so few) adds its share of j elsewhere:
+    //  - the F sums: j's chunk computes the share itself (it reads only positions and volumes)
+    //    before its own pairs, so every sum receives its terms in ascending pair order;
+    //  - the forces: i's chunk writes the force of the pair to force_share_, and j's chunk
+    //    subtracts it after all chunks are done (after its terms as second particle in its
+    //    chunk and its own pairs' sum).
+    // The order of every sum is thus fixed by the chunks, which do not depend on the thread
+    // count: the results are the same bits with any number of threads, whichever thread takes
+    // which chunk.
+    std::vector<std::int32_t> pair_begin_;     // per particle: its first pair as first
+    std::vector<std::int32_t> chunk_begin_;    // per chunk: its first particle (and n at the end)
+    std::vector<std::int32_t> cross_begin_;    // per chunk: its first cross pair (as first)
+    // per chunk, the cross pairs whose j it holds in ascending pair order: their index k in
+    // the list of all cross pairs in ascending pair order, i, j and grad_i W_ij (i and the
+    // gradient in total Lagrangian only); incoming_begin_: offsets per chunk
+    std::vector<std::int32_t> incoming_, incoming_i_, incoming_j_, incoming_begin_;
+    std::vector<Vector<dim>>  incoming_g_;
+    std::vector<double>       force_share_;    // per cross pair k: force on its i (scratch)
     std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
     std::vector<Tensor<dim>> Q_;          // per particle: P L (TL) or sigma L (UL) (L = I if off)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update

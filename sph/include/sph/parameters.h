@@ -37,6 +37,10 @@ namespace sph
     double      av_beta     = 1.0;    ///< Monaghan artificial viscosity, quadratic term [-]
     double      hourglass   = 0.1;    ///< Ganzenmueller hourglass coefficient (FORM 7, 8) [-]
     int         n_threads   = 0;      ///< OpenMP threads; 0 = omp_get_max_threads()
+    /// Work units the threads take one at a time (each pass over the particles is cut into
+    /// `chunks` ranges of equal work); 0 = automatic: one per 128 particles, 1 to 16. The
+    /// results depend on it by round-off (the order of the sums), not on the thread count.
+    int         chunks      = 0;
     /// 3-D pair forces four at a time with AVX2 where the CPU has it (false: the portable scalar
     /// loop; the two differ by round-off only)
     bool        vectorised  = true;
