@@ -477,23 +477,26 @@ namespace sph
               // the shares of j of the pairs from earlier chunks (ascending pair order):
               // V0_i (x_j - x_i) (x) g, as -V0_i (x_i - x_j) (the same bits)
               const std::int32_t kb = incoming_begin_[chunk], ke = incoming_begin_[chunk + 1];
-              if constexpr (dim == 3)
-                if (simd)
-                  pair_kernel::incoming_gradient(
-                    position_volume_.data(), incoming_i_.data() + kb, incoming_j_.data() + kb,
-                    reinterpret_cast<const double *>(incoming_g_.data() + kb), ke - kb,
-                    p_.F[0].data());
-              for (std::int32_t k = kb; k < (simd ? kb : ke); ++k)
+              if (simd) // (3-D only) the same products and sums, vectorised
                 {
-                  const std::int32_t i = incoming_i_[k], j = incoming_j_[k];
-                  const Vector<dim> &g = incoming_g_[k];
-                  for (int r = 0; r < dim; ++r)
-                    {
-                      const double d = -V0[i] * (x[i][r] - x[j][r]);
-                      for (int c = 0; c < dim; ++c)
-                        p_.F[j](r, c) += d * g[c];
-                    }
+                  if constexpr (dim == 3)
+                    pair_kernel::incoming_gradient(
+                      position_volume_.data(), incoming_i_.data() + kb, incoming_j_.data() + kb,
+                      reinterpret_cast<const double *>(incoming_g_.data() + kb), ke - kb,
+                      p_.F[0].data());
                 }
+              else
+                for (std::int32_t k = kb; k < ke; ++k)
+                  {
+                    const std::int32_t i = incoming_i_[k], j = incoming_j_[k];
+                    const Vector<dim> &g = incoming_g_[k];
+                    for (int r = 0; r < dim; ++r)
+                      {
+                        const double d = -V0[i] * (x[i][r] - x[j][r]);
+                        for (int c = 0; c < dim; ++c)
+                          p_.F[j](r, c) += d * g[c];
+                      }
+                  }
               [[maybe_unused]] std::int32_t batch[stress_batch::lanes];
               [[maybe_unused]] int          n_batch = 0;
               for (std::int32_t i = b; i < e; ++i)
