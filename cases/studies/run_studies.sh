@@ -2,13 +2,13 @@
 # Runs the studies of cases/studies with `cosim study` and copies each study.csv / study.png into
 # cases/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
 # usage: cases/studies/run_studies.sh [NAME ...]   (no NAME: all, in the order below)
-# Environment: COSIM (default build/coupling/cosim), EXTRA (more cosim options, e.g. --set ...),
+# Environment: COSIM (default build/bin/cosim), EXTRA (more cosim options, e.g. --set ...),
 # SPACING (a particle spacing [m] for every run of the study), SUFFIX (appended to the study's
 # folder names), e.g. SPACING=0.005 SUFFIX=-5mm.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
-cosim="${COSIM:-build/coupling/cosim}"
+cosim="${COSIM:-build/bin/cosim}"
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}" # shared machine: do not spin at barriers
 bts=cases/bts/bts.prm
 ucs=cases/ucs/ucs.prm

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Helpers shared by the two drivers (SpecimenTest, CuttingTest): the solver state as output
+/// Helpers shared by the two drivers (SpecimenDriver, CuttingDriver): the solver state as output
 /// snapshots and an FEM body's contact face as the surface PenaltyContact sees. Internal to the
 /// coupling library.
 

@@ -1,5 +1,5 @@
 // The case-file reader: the shipped cases read, the group lookup, explicit overrides.
-#include <coupling/case_file.h>
+#include <app/case_file.h>
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ namespace
 
 TEST(CaseFile, UcsCaseReadsTheGroupFromTables3And4)
 {
-  const auto c = coupling::read_case_file(source("cases/ucs/ucs.prm"), {});
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), {});
   const auto &p = c.parameters;
   EXPECT_EQ(p.test, "UCS");
   EXPECT_EQ(p.name, "ucs");
@@ -43,10 +43,10 @@ TEST(CaseFile, UcsCaseReadsTheGroupFromTables3And4)
 
 TEST(CaseFile, BtsAndCtcsCasesRead)
 {
-  const auto b = coupling::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
+  const auto b = app::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
   EXPECT_EQ(b.test, "BTS");
   expect_close(b.length, 0.025);
-  const auto t = coupling::read_case_file(source("cases/ctcs/ctcs.prm"), {}).parameters;
+  const auto t = app::read_case_file(source("cases/ctcs/ctcs.prm"), {}).parameters;
   EXPECT_EQ(t.test, "CTCS");
   EXPECT_EQ(t.rock.group, "M8");
   expect_close(t.confining_pressure, 10e6);
@@ -55,7 +55,7 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
 
 TEST(CaseFile, MeasuredStrengthUsesTable3)
 {
-  const auto p = coupling::read_case_file(source("cases/ctcs/ctcs.prm"),
+  const auto p = app::read_case_file(source("cases/ctcs/ctcs.prm"),
                                           {"Rock/Strength parameters=measured", "Rock/Group=M9"})
                    .parameters;
   expect_close(p.rock.cohesion, 45.27e6);
@@ -65,7 +65,7 @@ TEST(CaseFile, MeasuredStrengthUsesTable3)
 
 TEST(CaseFile, ExplicitKeysOverrideTheGroupAndLaterSetWins)
 {
-  const auto c = coupling::read_case_file(source("cases/ucs/ucs.prm"),
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"),
                                           {"Rock/Youngs modulus=50e9", "Rock/Group=M4", "SPH/FORM=1", "SPH/FORM=7"});
   expect_close(c.parameters.rock.youngs_modulus, 50e9);
   expect_close(c.parameters.rock.poissons_ratio, 0.25); // M4
@@ -77,22 +77,22 @@ TEST(CaseFile, ExplicitKeysOverrideTheGroupAndLaterSetWins)
 
 TEST(CaseFile, TensionCutoffDefaultsToTheGroupsBts)
 {
-  const auto p = coupling::read_case_file(source("cases/bts/bts.prm"), {"Rock/Model=mohr-coulomb-cutoff"}).parameters;
+  const auto p = app::read_case_file(source("cases/bts/bts.prm"), {"Rock/Model=mohr-coulomb-cutoff"}).parameters;
   expect_close(p.rock.tensile_strength, 15.43e6);
-  const auto q = coupling::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
+  const auto q = app::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
   EXPECT_LT(std::abs(q.rock.tensile_strength), 1e-300);
 }
 
 TEST(CaseFile, TssfacAboveOneIsAcceptedWithAWarning)
 {
   // issue 9: TSSFAC 5 is the injected instability the run itself must catch
-  const auto c = coupling::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/TSSFAC=5"});
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/TSSFAC=5"});
   ASSERT_EQ(c.warnings.size(), 1u);
   EXPECT_NE(c.warnings[0].find("TSSFAC"), std::string::npos);
 }
 
 TEST(CaseFile, ErrorsAreInputErrors)
 {
-  EXPECT_THROW(coupling::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/FORM=2"}), coupling::InputError);
-  EXPECT_THROW(coupling::read_case_file("/nonexistent.prm", {}), coupling::InputError);
+  EXPECT_THROW(app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/FORM=2"}), coupling::InputError);
+  EXPECT_THROW(app::read_case_file("/nonexistent.prm", {}), coupling::InputError);
 }

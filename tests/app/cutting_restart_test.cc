@@ -5,8 +5,8 @@
 #include "history_compare.h"
 #include "subprocess.h"
 
-#include <coupling/case_file.h>
-#include <coupling/checkpoint.h>
+#include <app/case_file.h>
+#include <app/checkpoint.h>
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -57,7 +57,7 @@ namespace
                                 const std::vector<std::string> &extra = {})
   {
     o.insert(o.end(), extra.begin(), extra.end());
-    return coupling::read_case_file(file, o).parameters;
+    return app::read_case_file(file, o).parameters;
   }
 
   /// Runs `file` with `o` to step `end` (Output/Stop after steps), then stopped after a
@@ -88,8 +88,8 @@ namespace
     // through the HDF5 file, as cosim run --restart does
     Sandbox box;
     const std::string path = (box.dir() / "checkpoint.h5").string();
-    coupling::write_checkpoint(path, first.last_checkpoint);
-    const coupling::StateArrays state = coupling::read_checkpoint(path);
+    app::write_checkpoint(path, first.last_checkpoint);
+    const coupling::StateArrays state = app::read_checkpoint(path);
     Recorder second;
     EXPECT_THROW(coupling::run_case(make(file, o, to_end), second, &state),
                  coupling::RunInterrupted);

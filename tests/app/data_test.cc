@@ -1,7 +1,8 @@
 // The CSV reader, the material table and Eqs. 14-15 against the paper's tables.
-#include <coupling/calibrate.h>
-#include <coupling/csv.h>
-#include <coupling/material_table.h>
+#include <diagnose/calibrate.h>
+#include <diagnose/csv.h>
+#include <diagnose/material_table.h>
+#include <app/paths.h>
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -10,7 +11,7 @@
 #include <cstdio>
 #include <sstream>
 
-using coupling::CsvTable;
+using diagnose::CsvTable;
 
 namespace
 {
@@ -96,7 +97,7 @@ TEST(Csv, EveryDataTableHasItsHeaderAndReads)
   for (const auto *f : {"table1_test_design.csv", "table2_regressions.csv", "table3_fitted_parameters.csv",
                         "table4_calibrated.csv", "table5_ucs_results.csv", "table6_bts_results.csv"})
   {
-    const auto t = CsvTable::read(coupling::default_data_directory() + "/" + f);
+    const auto t = CsvTable::read(app::data_directory().string() + "/" + f);
     ASSERT_FALSE(t.comments().empty()) << f;
     EXPECT_EQ(t.comments()[0].rfind("Yang et al. 2022, Table", 0), 0u) << f;
     EXPECT_GT(t.n_rows(), 9u) << f;
@@ -105,7 +106,7 @@ TEST(Csv, EveryDataTableHasItsHeaderAndReads)
 
 TEST(MaterialTable, GroupsOfThePaper)
 {
-  const auto table = coupling::MaterialTable::read(coupling::default_data_directory());
+  const auto table = diagnose::MaterialTable::read(app::data_directory().string());
   ASSERT_EQ(table.groups().size(), 10u);
   const auto &m1 = table.find("M1");
   EXPECT_NEAR(m1.youngs_modulus, 97.07e9, 1e-3);
@@ -121,10 +122,10 @@ TEST(MaterialTable, GroupsOfThePaper)
 // c = 33.17 MPa, phi = 63.54 deg), see cases/data/README.md.
 TEST(Calibrate, ReproducesTable4)
 {
-  const auto table = coupling::MaterialTable::read(coupling::default_data_directory());
+  const auto table = diagnose::MaterialTable::read(app::data_directory().string());
   for (const auto &g : table.groups())
   {
-    const auto s = coupling::calibrate_mohr_coulomb(g.ucs / 1e6, g.bts / 1e6);
+    const auto s = diagnose::calibrate_mohr_coulomb(g.ucs / 1e6, g.bts / 1e6);
     ASSERT_TRUE(g.calibrated_cohesion.has_value()) << g.group;
     EXPECT_EQ(two_decimals(s.cohesion), two_decimals(*g.calibrated_cohesion / 1e6)) << g.group;
     EXPECT_EQ(two_decimals(s.friction_angle), two_decimals(*g.calibrated_friction_angle)) << g.group;
@@ -133,7 +134,7 @@ TEST(Calibrate, ReproducesTable4)
 
 TEST(Calibrate, Table6BtsOfM1DoesNotGiveTable4)
 {
-  const auto s = coupling::calibrate_mohr_coulomb(282.18, 15.60);
+  const auto s = diagnose::calibrate_mohr_coulomb(282.18, 15.60);
   EXPECT_EQ(two_decimals(s.cohesion), "33.17");
   EXPECT_EQ(two_decimals(s.friction_angle), "63.54");
 }
@@ -141,23 +142,23 @@ TEST(Calibrate, Table6BtsOfM1DoesNotGiveTable4)
 TEST(Calibrate, RoundTripThroughEqs14And15)
 {
   // the inverse is closed-form: only round-off may remain
-  const auto s = coupling::calibrate_mohr_coulomb(231.0, 10.49);
-  EXPECT_NEAR(coupling::mohr_coulomb_ucs(s), 231.0, 1e-12 * 231.0);
-  EXPECT_NEAR(coupling::mohr_coulomb_bts(s), 10.49, 1e-12 * 231.0);
+  const auto s = diagnose::calibrate_mohr_coulomb(231.0, 10.49);
+  EXPECT_NEAR(diagnose::mohr_coulomb_ucs(s), 231.0, 1e-12 * 231.0);
+  EXPECT_NEAR(diagnose::mohr_coulomb_bts(s), 10.49, 1e-12 * 231.0);
 }
 
 TEST(Calibrate, MeasuredM8GivesThePapersPrediction)
 {
   // Section 3.2: c = 49.17 MPa, phi = 49.78 deg predict UCS 268.58 and BTS 36.01 MPa
-  const coupling::MohrCoulombStrength m8{49.17, 49.78};
-  EXPECT_EQ(two_decimals(coupling::mohr_coulomb_ucs(m8)), "268.58");
-  EXPECT_EQ(two_decimals(coupling::mohr_coulomb_bts(m8)), "36.01");
+  const diagnose::MohrCoulombStrength m8{49.17, 49.78};
+  EXPECT_EQ(two_decimals(diagnose::mohr_coulomb_ucs(m8)), "268.58");
+  EXPECT_EQ(two_decimals(diagnose::mohr_coulomb_bts(m8)), "36.01");
 }
 
 TEST(Calibrate, RefusesBtsNotBelowUcs)
 {
-  EXPECT_THROW(coupling::calibrate_mohr_coulomb(10, 10), std::invalid_argument);
-  EXPECT_THROW(coupling::calibrate_mohr_coulomb(10, 0), std::invalid_argument);
+  EXPECT_THROW(diagnose::calibrate_mohr_coulomb(10, 10), std::invalid_argument);
+  EXPECT_THROW(diagnose::calibrate_mohr_coulomb(10, 0), std::invalid_argument);
 }
 
 TEST(Calibrate, BrazilianStatePutsTheDiscCentreOnTheEnvelope)
@@ -166,20 +167,20 @@ TEST(Calibrate, BrazilianStatePutsTheDiscCentreOnTheEnvelope)
   // BTS across. With the --brazilian c, phi that state and uniaxial compression at the UCS lie
   // on the envelope sigma_1 = UCS + N sigma_3 (compression +), to round-off
   const double ucs = 282.18, bts = 15.43;
-  const auto s     = coupling::calibrate_mohr_coulomb_brazilian(ucs, bts);
-  EXPECT_NEAR(coupling::mohr_coulomb_ucs(s), ucs, 1e-12 * ucs);
+  const auto s     = diagnose::calibrate_mohr_coulomb_brazilian(ucs, bts);
+  EXPECT_NEAR(diagnose::mohr_coulomb_ucs(s), ucs, 1e-12 * ucs);
   const double sin_phi = std::sin(s.friction_angle * M_PI / 180);
   const double n       = (1 + sin_phi) / (1 - sin_phi);
   EXPECT_NEAR(3 * bts, ucs + n * (-bts), 1e-10 * ucs);
   // with Eqs. 14-15 the same state is past the envelope: a disc splits below the BTS, at
   // UCS BTS / (UCS + 3 BTS) = 13.26 MPa for M1 (the coupled runs converge to 13.5 at 1-1.25 mm)
-  const auto t          = coupling::calibrate_mohr_coulomb(ucs, bts);
+  const auto t          = diagnose::calibrate_mohr_coulomb(ucs, bts);
   const double sin_t    = std::sin(t.friction_angle * M_PI / 180);
   const double n_t      = (1 + sin_t) / (1 - sin_t);
-  EXPECT_NEAR(coupling::mohr_coulomb_ucs(t) / (3 + n_t), ucs * bts / (ucs + 3 * bts), 1e-10 * ucs);
+  EXPECT_NEAR(diagnose::mohr_coulomb_ucs(t) / (3 + n_t), ucs * bts / (ucs + 3 * bts), 1e-10 * ucs);
   EXPECT_EQ(two_decimals(ucs * bts / (ucs + 3 * bts)), "13.26");
   // M1: c 36.08 MPa, phi 61.31 deg (cosim calibrate --brazilian)
   EXPECT_EQ(two_decimals(s.cohesion), "36.08");
   EXPECT_EQ(two_decimals(s.friction_angle), "61.31");
-  EXPECT_THROW(coupling::calibrate_mohr_coulomb_brazilian(40, 10), std::invalid_argument);
+  EXPECT_THROW(diagnose::calibrate_mohr_coulomb_brazilian(40, 10), std::invalid_argument);
 }

@@ -1,7 +1,7 @@
 // The output writers with made-up data (no run needed): summary.json keys, history.csv columns,
 // results.h5 + results.xdmf, progress lines.
-#include <coupling/output_writer.h>
-#include <coupling/progress.h>
+#include <app/output_writer.h>
+#include <app/progress.h>
 
 #include <gtest/gtest.h>
 
@@ -45,7 +45,7 @@ TEST(Output, SummaryJsonHasEveryKeyInPrefixedUnits)
   s.max_displacement = 0.3e-3;
   s.poissons_ratio = -1;
   s.max_exchange_imbalance = 7.25e-16;
-  const std::string j = coupling::summary_json(s);
+  const std::string j = app::summary_json(s);
   for (const auto *k : {"test", "n_particles", "n_steps", "wall_seconds", "peak_stress_MPa", "peak_force_kN",
                         "strain_at_peak", "youngs_modulus_GPa", "poissons_ratio", "max_displacement_mm",
                         "max_kinetic_to_internal_energy", "max_force_imbalance", "energy_balance_error",
@@ -65,7 +65,7 @@ TEST(Output, SummaryJsonWritesTheExtraResultsOfATestType)
   coupling::Summary s;
   s.test  = "linear-cutting";
   s.extra = {{"mean_normal_force_kN", 12.5}, {"specific_energy_MJ_m3", std::nan("")}};
-  const std::string j = coupling::summary_json(s);
+  const std::string j = app::summary_json(s);
   EXPECT_NE(j.find("\"mean_normal_force_kN\": 12.5,"), std::string::npos) << j;
   // no chip, no specific energy: null, not a number JSON cannot hold
   EXPECT_NE(j.find("\"specific_energy_MJ_m3\": null,"), std::string::npos) << j;
@@ -80,7 +80,7 @@ TEST(Output, HistoryCsvColumnsAndUnits)
   row.displacement = 0.2e-3;
   row.force = 100e3;
   row.stress = 50e6;
-  coupling::write_history_csv((dir.path / "h.csv").string(), {row, row});
+  app::write_history_csv((dir.path / "h.csv").string(), {row, row});
   const std::string text = read(dir.path / "h.csv");
   EXPECT_EQ(text.substr(0, text.find('\n')),
             "time_s,displacement_mm,force_kN,force_bottom_kN,stress_MPa,strain,axial_gauge_strain,radial_strain,kinetic_energy_J,"
@@ -100,7 +100,7 @@ TEST(Output, ResultsH5AndXdmf)
   m.position = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
   m.hexahedra = {0, 1, 2, 3, 4, 5, 6, 7};
   {
-    coupling::ResultsFile results((dir.path / "results.h5").string());
+    app::ResultsFile results((dir.path / "results.h5").string());
     results.add_snapshot(0.0, p, {m});
     results.add_snapshot(1e-4, p, {m});
     EXPECT_EQ(results.n_snapshots(), 2u);
@@ -120,12 +120,12 @@ TEST(Output, ResultsH5AndXdmf)
 
 TEST(Output, ResultsFileRefusesAnUnwritablePath)
 {
-  EXPECT_THROW(coupling::ResultsFile("/nonexistent/folder/results.h5"), std::runtime_error);
+  EXPECT_THROW(app::ResultsFile("/nonexistent/folder/results.h5"), std::runtime_error);
 }
 
 TEST(Progress, LineHasStepTimePercentWallAndTimeLeft)
 {
-  const std::string line = coupling::ProgressDisplay::format(1200, 2.5e-3, 0.25, 30.0);
+  const std::string line = app::ProgressDisplay::format(1200, 2.5e-3, 0.25, 30.0);
   EXPECT_NE(line.find("step 1200"), std::string::npos) << line;
   EXPECT_NE(line.find("t = 0.0025 s"), std::string::npos) << line;
   EXPECT_NE(line.find("25.0 %"), std::string::npos) << line;
@@ -139,11 +139,11 @@ TEST(Progress, PlainLinesWhenNotATerminalAndSilentWhenQuiet)
   const auto path = dir.path / "progress.txt";
   {
     std::FILE *f = std::fopen(path.c_str(), "w");
-    coupling::ProgressDisplay plain(true, f, false, 0.0); // every update prints
+    app::ProgressDisplay plain(true, f, false, 0.0); // every update prints
     plain.update(1, 0.1, 0.1);
     plain.update(2, 0.2, 0.2);
     plain.finish();
-    coupling::ProgressDisplay quiet(false, f, false, 0.0);
+    app::ProgressDisplay quiet(false, f, false, 0.0);
     quiet.update(3, 0.3, 0.3);
     quiet.finish();
     std::fclose(f);

@@ -5,8 +5,8 @@
 #include "subprocess.h"
 #include "test_seed.h"
 
-#include <coupling/case_file.h>
-#include <coupling/checkpoint.h>
+#include <app/case_file.h>
+#include <app/checkpoint.h>
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -38,7 +38,7 @@ namespace
   {
     std::vector<std::string> o = small;
     o.insert(o.end(), extra.begin(), extra.end());
-    return coupling::read_case_file(ucs_case, o).parameters;
+    return app::read_case_file(ucs_case, o).parameters;
   }
 
   /// Keeps what the run reports, in memory, and where a failed run's last good state was.
@@ -107,8 +107,8 @@ TEST(Restart, StoppedAtARandomStepAndRestartedFromTheFileGivesTheSameHistory)
   // through the HDF5 file, as cosim run --restart does
   Sandbox box;
   const std::string file = (box.dir() / "checkpoint.h5").string();
-  coupling::write_checkpoint(file, first.last_checkpoint);
-  const coupling::StateArrays state = coupling::read_checkpoint(file);
+  app::write_checkpoint(file, first.last_checkpoint);
+  const coupling::StateArrays state = app::read_checkpoint(file);
   ASSERT_EQ(state.size(), first.last_checkpoint.size());
   for (const auto &[name, values] : first.last_checkpoint)
   {

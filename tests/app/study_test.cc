@@ -4,9 +4,9 @@
 // with.
 #include "subprocess.h"
 
-#include <coupling/calibrate.h>
-#include <coupling/csv.h>
-#include <coupling/study.h>
+#include <diagnose/calibrate.h>
+#include <diagnose/csv.h>
+#include <app/study.h>
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ TEST(Study, GroupsOfAnElasticUcsFollowHookeAndTable3)
   const fs::path out = box.dir() / "groups";
   ASSERT_TRUE(fs::exists(out / "study.csv"));
   EXPECT_TRUE(fs::exists(out / "study.png")) << "python3-matplotlib is part of tools/setup";
-  const auto table = coupling::CsvTable::read((out / "study.csv").string());
+  const auto table = diagnose::CsvTable::read((out / "study.csv").string());
   ASSERT_EQ(table.n_rows(), 2u);
   const double table3_e[] = {97.07, 79.64}, table3_ucs[] = {282.18, 200.18};
   for (std::size_t i = 0; i < 2; ++i)
@@ -95,7 +95,7 @@ TEST(Study, KeyValuesSweepDoublesTheStressWithTheStrain)
   const Result r = run_cosim(box, tiny({"study", ucs_case, "--key", "Loading/End strain",
                                         "--values", "0.0005,0.001", "-o", "s"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto table = coupling::CsvTable::read((box.dir() / "s" / "study.csv").string());
+  const auto table = diagnose::CsvTable::read((box.dir() / "s" / "study.csv").string());
   ASSERT_EQ(table.n_rows(), 2u);
   EXPECT_EQ(table.text(0, "Loading/End strain"), "0.0005");
   // linear elasticity: twice the end strain, twice the stress; the contact's own compliance is
@@ -140,12 +140,12 @@ TEST(Study, MohrCoulombAxialStrengthIsTheEnvelope)
   // sigma3 = 0: Eq. 14 (calibrate.cc's own closed form); Table 4 M1 gives Table 3's UCS to the
   // rounding of c and phi (two decimals: 0.1 %)
   const double c = 32.99e6, phi = 63.68;
-  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0),
-              coupling::mohr_coulomb_ucs({c, phi}), 1.0);
-  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0), 282.18e6, 0.001 * 282.18e6);
+  EXPECT_NEAR(app::mohr_coulomb_axial_strength(c, phi, 0),
+              diagnose::mohr_coulomb_ucs({c, phi}), 1.0);
+  EXPECT_NEAR(app::mohr_coulomb_axial_strength(c, phi, 0), 282.18e6, 0.001 * 282.18e6);
   // slope of the envelope: (1 + sin phi)/(1 - sin phi), exact in sigma3 (linear)
   const double s = std::sin(49.78 * M_PI / 180);
-  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(49.17e6, 49.78, 30e6) -
-                coupling::mohr_coulomb_axial_strength(49.17e6, 49.78, 0),
+  EXPECT_NEAR(app::mohr_coulomb_axial_strength(49.17e6, 49.78, 30e6) -
+                app::mohr_coulomb_axial_strength(49.17e6, 49.78, 0),
               30e6 * (1 + s) / (1 - s), 1e-6);
 }

@@ -18,7 +18,7 @@ namespace cosim_test
 {
   namespace fs = std::filesystem;
 
-  inline std::string cosim_binary() { return std::string(COSIM_BINARY_DIR) + "/coupling/cosim"; }
+  inline std::string cosim_binary() { return std::string(COSIM_BINARY_DIR) + "/bin/cosim"; }
   inline std::string source(const std::string &relative) { return std::string(COSIM_SOURCE_DIR) + "/" + relative; }
 
   inline std::string shell_quote(const std::string &s)

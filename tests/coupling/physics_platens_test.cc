@@ -3,7 +3,7 @@
 // BTS with the ISRM curved jaws.
 #include "run_helpers.h"
 
-#include <coupling/case_file.h>
+#include <app/case_file.h>
 #include <coupling/contact.h>
 #include <coupling/run_case.h>
 
@@ -41,7 +41,7 @@ namespace
     return p;
   }
 
-  /// The platen geometry the driver builds for a UCS case (specimen_test.cc, build_platens):
+  /// The platen geometry the driver builds for a UCS case (specimen_driver.cc, build_platens):
   /// a steel disc D + 4 dx wide, elements of 2 dx; here the bottom one (both are alike).
   fem::Platen bottom_platen(const CaseParameters &c)
   {
@@ -212,8 +212,8 @@ TEST(CoupledBts, CurvedJawsSplitTheDiscAboveTheFlatPlatenStrength)
   // cases/bts (M1, D 50 x 25 mm, 2.5 mm spacing) with flat platens and with the ISRM jaws
   // (arc radius 1.5 disc radii, concave: they cradle the disc)
   const std::string bts = std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts.prm";
-  CaseParameters flat   = read_case_file(bts, {}).parameters;
-  CaseParameters jaw    = read_case_file(bts, {"Platens/Shape=jaw"}).parameters;
+  CaseParameters flat   = app::read_case_file(bts, {}).parameters;
+  CaseParameters jaw    = app::read_case_file(bts, {"Platens/Shape=jaw"}).parameters;
   flat.sph.n_threads = jaw.sph.n_threads = 1; // ctest runs two tests at a time on two cores
   Keep rows_flat, rows_jaw;
   const Summary f = run_case(flat, rows_flat);

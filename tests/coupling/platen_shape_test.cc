@@ -1,5 +1,5 @@
 // The BTS platen shape in the case file: flat platens or ISRM curved jaws, validated.
-#include <coupling/case_file.h>
+#include <app/case_file.h>
 #include <coupling/run_case.h>
 
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@ namespace
 
 TEST(PlatenShape, BtsDefaultsToFlatAndReadsJaws)
 {
-  using coupling::read_case_file;
+  using app::read_case_file;
   EXPECT_EQ(read_case_file(bts_case(), {}).parameters.platens.shape, "flat");
   const auto jaw = read_case_file(bts_case(), {"Platens/Shape=jaw"}).parameters.platens;
   EXPECT_EQ(jaw.shape, "jaw");
@@ -30,7 +30,7 @@ TEST(PlatenShape, BtsDefaultsToFlatAndReadsJaws)
 TEST(PlatenShape, BadShapesAreInputErrors)
 {
   using coupling::InputError;
-  using coupling::read_case_file;
+  using app::read_case_file;
   const std::string ucs = std::string(COSIM_SOURCE_DIR) + "/cases/ucs/ucs.prm";
   // jaws are for BTS only
   EXPECT_THROW(read_case_file(ucs, {"Platens/Shape=jaw"}), InputError);

@@ -1,6 +1,6 @@
 #pragma once
 // Test fixture: one SPH rock body and one FEM body (fem::Platen) coupled through PenaltyContact,
-// stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_test.cc): contact
+// stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_driver.cc): contact
 // forces at the start of the step, SPH integrated with dt, the FEM body sub-cycled with dt/n and
 // the platen force held over the sub-steps, so that both sides receive the same impulse f dt.
 #include "../../coupling/src/driver_common.h"

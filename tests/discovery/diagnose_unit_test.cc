@@ -2,9 +2,9 @@
 // file and line), the surrogate's envelopes against the rock models' own return mappings in
 // sph/rock_models.h (a stress on the envelope is admissible just inside and returned just outside),
 // and the closure / Weibull / rate laws added to rock_models.h.
-#include "../../coupling/src/diagnose_model.h"
+#include "../../diagnose/src/diagnose_model.h"
 
-#include <coupling/diagnose.h>
+#include <diagnose/diagnose.h>
 #include <coupling/run_case.h>
 #include <sph/rock_models.h>
 
@@ -17,7 +17,7 @@
 
 namespace
 {
-  using namespace coupling::diagnose;
+  using namespace diagnose;
   namespace fs = std::filesystem;
 
   std::string folder(const std::string &name)

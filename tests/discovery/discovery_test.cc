@@ -25,7 +25,7 @@
 // 1.6 SEs).
 #include "generator.h"
 
-#include <coupling/diagnose.h>
+#include <diagnose/diagnose.h>
 
 #include <gtest/gtest.h>
 
@@ -44,7 +44,7 @@
 
 namespace
 {
-  using namespace coupling::diagnose;
+  using namespace diagnose;
 
   double uniform(unsigned seed, double lo, double hi)
   {
@@ -63,7 +63,7 @@ namespace
   {
     const std::string dir = folder(name, seed);
     discovery::write_folder(t, dir, seed, true);
-    return diagnose(read_data(dir), Options{});
+    return diagnose::diagnose(read_data(dir), Options{});
   }
 
   /// What a data folder itself says about platen friction, by a moment estimate that shares

@@ -1,7 +1,7 @@
 // libFuzzer target for the CSV reader (issue 9): any byte string is either a table or an
 // InputError naming a line; nothing else (no crash, no other exception, no sanitizer report).
 // Built and run by tools/sanitize (clang++-14 -fsanitize=fuzzer,address,undefined).
-#include <coupling/csv.h>
+#include <diagnose/csv.h>
 #include <coupling/run_case.h>
 
 #include <cstdint>
@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   std::istringstream in(text);
   try
   {
-    const coupling::CsvTable t = coupling::CsvTable::parse(in, "fuzz.csv");
+    const diagnose::CsvTable t = diagnose::CsvTable::parse(in, "fuzz.csv");
     // every cell of every row: text, number or a one-line InputError
     for (std::size_t r = 0; r < t.n_rows(); ++r)
     {

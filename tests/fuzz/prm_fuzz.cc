@@ -2,7 +2,7 @@
 // InputError of one line; nothing else (no crash, no other exception, no sanitizer report).
 // The first line of the input, when it starts with "--set ", is used as one override instead.
 // Built and run by tools/sanitize (clang++-14 -fsanitize=fuzzer,address,undefined).
-#include <coupling/case_file.h>
+#include <app/case_file.h>
 #include <coupling/run_case.h>
 
 #include <cstdint>
@@ -29,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   }
   try
   {
-    (void)coupling::read_case_file(path, overrides);
+    (void)app::read_case_file(path, overrides);
   }
   catch (const coupling::InputError &e)
   {

@@ -1,0 +1,145 @@
+// cosim: the command-line front end. Each subcommand is one row of `commands` below: a name, a
+// one-line summary, its help text and its entry point (arguments after the subcommand, returns
+// the exit status). To add one, write `int my_main(const std::vector<std::string>&)` and
+// `std::string my_help()` in app/src and add a row.
+//
+// Exit status (docs/design.md): 0 done, 1 internal failure, 2 bad input (one line on stderr
+// naming the culprit and what is accepted), 3 unstable run.
+#include <app/calibrate_command.h>
+#include <app/cli.h>
+#include <app/diagnose_command.h>
+#include <app/paths.h>
+#include <app/run_command.h>
+#include <app/study.h>
+#include <coupling/errors.h>
+
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace
+{
+  struct Command
+  {
+    const char *name;
+    const char *summary;
+    std::string (*help)();
+    int (*main)(const std::vector<std::string> &args);
+  };
+
+  const Command commands[] = {
+    {"run", "run one UCS / BTS / CTCS case from a .prm file", &app::run_help, &app::run_main},
+    {"calibrate", "back-calculate Mohr-Coulomb c, phi from UCS and BTS (Eqs. 14-15)", &app::calibrate_help,
+     &app::calibrate_main},
+    {"study", "sweep parameters / rock groups over one case: study.csv and study.png", &app::study_help,
+     &app::study_main},
+    {"diagnose", "what the simulation gets wrong on measured data, the cause and the gain",
+     &app::diagnose_help, &app::diagnose_main},
+  };
+
+  std::vector<std::string> command_names()
+  {
+    std::vector<std::string> names;
+    for (const auto &c : commands)
+      names.push_back(c.name);
+    return names;
+  }
+
+  std::string general_help()
+  {
+    std::string text = "usage: cosim SUBCOMMAND [options]\n"
+                       "\n"
+                       "SPH-FEM co-simulation of laboratory rock tests (UCS, BTS, triaxial CTCS).\n"
+                       "\n"
+                       "subcommands:\n";
+    for (const auto &c : commands)
+    {
+      std::string name = c.name;
+      name.resize(12, ' ');
+      text += "  " + name + c.summary + "\n";
+    }
+    text += "\n'cosim SUBCOMMAND --help' describes one. Example:\n"
+            "  cosim run cases/ucs/ucs.prm --set \"Rock/Group=M4\" -o results/ucs-M4\n"
+            "\n"
+            "  cosim --version    the version and the commit it was built from\n"
+            "\n"
+            "Exit status: 0 done, 2 bad input, 3 unstable run, 1 other failure.\n";
+    return text;
+  }
+
+  /// One line on stderr: newlines of a message folded into spaces.
+  void error_line(const std::string &message)
+  {
+    std::string line = message;
+    for (auto &ch : line)
+      if (ch == '\n' || ch == '\r')
+        ch = ' ';
+    std::fprintf(stderr, "cosim: %s\n", line.c_str());
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty())
+  {
+    std::fputs(general_help().c_str(), stderr);
+    return 2;
+  }
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help")
+  {
+    std::fputs(general_help().c_str(), stdout);
+    return 0;
+  }
+  if (args[0] == "--version" || args[0] == "version")
+  {
+    std::printf("cosim %s (commit %s)\n", app::version().c_str(), app::commit().c_str());
+    return 0;
+  }
+  const Command *command = nullptr;
+  for (const auto &c : commands)
+    if (args[0] == c.name)
+      command = &c;
+  if (command == nullptr)
+  {
+    std::string names;
+    for (const auto &n : command_names())
+      names += (names.empty() ? "" : ", ") + n;
+    error_line("unknown subcommand '" + args[0] + "'" + app::did_you_mean(args[0], command_names()) +
+               "; accepted: " + names + " (cosim --help)");
+    return 2;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  for (const auto &a : rest)
+    if (a == "--help" || a == "-h")
+    {
+      std::fputs(command->help().c_str(), stdout);
+      return 0;
+    }
+  try
+  {
+    return command->main(rest);
+  }
+  catch (const coupling::InputError &e)
+  {
+    error_line(e.what());
+    return 2;
+  }
+  catch (const coupling::InstabilityError &e)
+  {
+    error_line(std::string("unstable run: ") + e.what());
+    return 3;
+  }
+  catch (const std::bad_alloc &)
+  {
+    error_line("out of memory (try a coarser SPH/Particle spacing)");
+    return 1;
+  }
+  catch (const std::exception &e)
+  {
+    error_line(std::string("error: ") + e.what());
+    return 1;
+  }
+}

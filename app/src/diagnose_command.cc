@@ -1,0 +1,115 @@
+// `cosim diagnose DATA_DIR`: options, then the diagnosis (diagnose/), its files and plots.
+#include <app/cli.h>
+#include <app/diagnose_command.h>
+#include <app/output_writer.h>
+#include <coupling/errors.h>
+#include <diagnose/csv.h>
+#include <diagnose/diagnose.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace app
+{
+
+  namespace fs = std::filesystem;
+  using coupling::InputError;
+  using diagnose::parse_finite_double;
+
+  std::string diagnose_help()
+  {
+    return "usage: cosim diagnose DATA_DIR [-o OUTDIR] [--force] [--bic-threshold X]\n"
+           "\n"
+           "What the simulation gets wrong on measured data, the cause, the extension and the "
+           "gain.\n"
+           "DATA_DIR holds any of material.csv, strength.csv, curves/*.csv (design.md, 'Measured "
+           "data').\n"
+           "The baseline is linear Mohr-Coulomb with the measured c, phi (or calibrated from UCS "
+           "and BTS),\n"
+           "measured E, rigid frictionless platens and the displacement read at the platen. Each "
+           "candidate\n"
+           "(tension_cutoff, envelope_curvature, crack_closure, machine_compliance, end_friction,\n"
+           "heterogeneity, loading_rate) is fitted with PETSc TAO (POUNDERS) on a material-point "
+           "surrogate\n"
+           "and judged by BIC and leave-one-specimen-out error.\n"
+           "\n"
+           "writes into OUTDIR (default results/diagnose):\n"
+           "  diagnosis.json  identified, candidates, baseline, extended, gain\n"
+           "  report.md       candidates table, named cause and evidence, fitted values, gain\n"
+           "  envelope.csv, points.csv, envelope.png, curves.png\n"
+           "\n"
+           "options:\n"
+           "  -o, --output OUTDIR  result folder; never replaced without --force\n"
+           "  --force              replace an existing OUTDIR\n"
+           "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
+           "  --coupled-spacing DX also run the coupled simulator (run_case, spacing DX [m]) on "
+           "the\n"
+           "                       datum the baseline misses most, baseline and extended rock "
+           "model\n"
+           "                       (minutes per run)\n";
+  }
+
+  int diagnose_main(const std::vector<std::string> &args)
+  {
+    std::string data_dir, out_dir = "results/diagnose";
+    bool force = false;
+    diagnose::Options options;
+    for (std::size_t i = 0; i < args.size(); ++i)
+    {
+      const std::string &a = args[i];
+      const auto next      = [&]() -> std::string {
+        if (i + 1 >= args.size())
+          throw InputError("cosim diagnose: " + a + " needs a value");
+        return args[++i];
+      };
+      if (a == "-o" || a == "--output")
+        out_dir = next();
+      else if (a == "--force")
+        force = true;
+      else if (a == "--bic-threshold")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || *v < 0)
+          throw InputError("cosim diagnose: --bic-threshold takes a non-negative number");
+        options.bic_threshold = *v;
+      }
+      else if (a == "--coupled-spacing")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || !(*v > 0 && *v < 0.01))
+          throw InputError(
+            "cosim diagnose: --coupled-spacing takes a particle spacing in m, 0 < dx < 0.01");
+        options.coupled_spacing = *v;
+      }
+      else if (!a.empty() && a[0] == '-')
+        throw InputError("cosim diagnose: unknown option '" + a + "'" +
+                         did_you_mean(a, {"--output", "--force", "--bic-threshold",
+                                          "--coupled-spacing", "--help"}) +
+                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX");
+      else if (data_dir.empty())
+        data_dir = a;
+      else
+        throw InputError("cosim diagnose: one DATA_DIR only (got '" + data_dir + "' and '" + a +
+                         "')");
+    }
+    if (data_dir.empty())
+      throw InputError(
+        "cosim diagnose: give the measured-data folder: cosim diagnose DATA_DIR [-o OUTDIR]");
+    if (fs::exists(out_dir) && !force)
+      throw InputError(out_dir +
+                       " already exists; use --force to replace it, or -o to choose another");
+    const diagnose::Data data   = diagnose::read_data(data_dir);
+    const diagnose::Diagnosis d = diagnose::diagnose(data, options);
+    const fs::path out(out_dir);
+    diagnose::write_report(out, d, data_dir);
+    const std::string why = run_plot_script("plot_diagnosis.py", {out.string()}, (out / "envelope.png").string());
+    if (!why.empty())
+      std::fprintf(stderr, "cosim diagnose: plots skipped: %s\n", why.c_str());
+    std::string ids;
+    for (const auto &i : d.identified)
+      ids += (ids.empty() ? "" : ", ") + i;
+    std::printf("identified: %s; gain %.3g (held-out %.3g); wrote %s\n", ids.c_str(), d.gain,
+                d.heldout_gain, out_dir.c_str());
+    return 0;
+  }
+} // namespace app

@@ -1,0 +1,497 @@
+#include <app/output_writer.h>
+#include <app/paths.h>
+
+#include <hdf5.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace app
+{
+  using coupling::Summary;
+  using coupling::HistoryRow;
+  using coupling::ParticleSnapshot;
+  using coupling::MeshSnapshot;
+
+  namespace
+  {
+    std::string number(double v, const char *fmt = "%.10g")
+    {
+      if (!std::isfinite(v))
+        return "null";
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, fmt, v + 0.0); // + 0.0: no "-0"
+      return buffer;
+    }
+
+    std::string quoted(const std::string &s)
+    {
+      std::string out = "\"";
+      for (const char ch : s)
+      {
+        if (ch == '"' || ch == '\\')
+          out += '\\', out += ch;
+        else if (ch == '\n')
+          out += "\\n";
+        else if (static_cast<unsigned char>(ch) < 0x20)
+          out += ' ';
+        else
+          out += ch;
+      }
+      return out + "\"";
+    }
+
+    /// The history columns with their value in file units.
+    struct Column
+    {
+      const char *name;
+      double (*value)(const HistoryRow &);
+    };
+
+    const Column columns[] = {
+      {"time_s", [](const HistoryRow &r) { return r.time; }},
+      {"displacement_mm", [](const HistoryRow &r) { return r.displacement * 1e3; }},
+      {"force_kN", [](const HistoryRow &r) { return r.force * 1e-3; }},
+      {"force_bottom_kN", [](const HistoryRow &r) { return r.force_bottom * 1e-3; }},
+      {"stress_MPa", [](const HistoryRow &r) { return r.stress * 1e-6; }},
+      {"strain", [](const HistoryRow &r) { return r.strain; }},
+      {"axial_gauge_strain", [](const HistoryRow &r) { return r.axial_gauge_strain; }},
+      {"radial_strain", [](const HistoryRow &r) { return r.radial_strain; }},
+      {"kinetic_energy_J", [](const HistoryRow &r) { return r.kinetic_energy; }},
+      {"internal_energy_J", [](const HistoryRow &r) { return r.internal_energy; }},
+      {"dissipated_energy_J", [](const HistoryRow &r) { return r.dissipated_energy; }},
+      {"external_work_J", [](const HistoryRow &r) { return r.external_work; }},
+      {"n_failed", [](const HistoryRow &r) { return r.n_failed; }},
+      {"rolling_force_kN", [](const HistoryRow &r) { return r.rolling_force * 1e-3; }},
+      {"side_force_kN", [](const HistoryRow &r) { return r.side_force * 1e-3; }},
+    };
+  } // namespace
+
+  std::string summary_json(const Summary &s)
+  {
+    std::ostringstream o;
+    o << "{\n"
+      << "  \"test\": " << quoted(s.test) << ",\n"
+      << "  \"n_particles\": " << s.n_particles << ",\n"
+      << "  \"n_steps\": " << s.n_steps << ",\n"
+      << "  \"wall_seconds\": " << number(s.wall_seconds) << ",\n"
+      << "  \"peak_stress_MPa\": " << number(s.peak_stress * 1e-6) << ",\n"
+      << "  \"peak_force_kN\": " << number(s.peak_force * 1e-3) << ",\n"
+      << "  \"strain_at_peak\": " << number(s.strain_at_peak) << ",\n"
+      << "  \"youngs_modulus_GPa\": " << number(s.youngs_modulus * 1e-9) << ",\n"
+      << "  \"platen_modulus_GPa\": " << number(s.platen_modulus * 1e-9) << ",\n"
+      << "  \"poissons_ratio\": " << (s.poissons_ratio < 0 ? "null" : number(s.poissons_ratio)) << ",\n"
+      << "  \"max_displacement_mm\": " << number(s.max_displacement * 1e3) << ",\n"
+      << "  \"max_kinetic_to_internal_energy\": " << number(s.max_kinetic_to_internal_energy) << ",\n"
+      << "  \"max_force_imbalance\": " << number(s.max_force_imbalance) << ",\n"
+      << "  \"energy_balance_error\": " << number(s.energy_balance_error) << ",\n"
+      << "  \"max_exchange_imbalance\": " << number(s.max_exchange_imbalance) << ",\n"
+      << "  \"quasi_static\": " << (s.quasi_static ? "true" : "false") << ",\n"
+      << "  \"true_area_mm2\": " << number(s.true_area * 1e6) << ",\n"
+      << "  \"lattice_area_mm2\": " << number(s.lattice_area * 1e6) << ",\n"
+      << "  \"strain_rate_per_s\": " << number(s.strain_rate) << ",\n"
+      << "  \"time_step_s\": " << number(s.time_step) << ",\n";
+    for (const auto &[key, value] : s.extra)
+      o << "  " << quoted(key) << ": " << (std::isfinite(value) ? number(value) : "null") << ",\n";
+    o
+      << "  \"stop_reason\": " << quoted(s.stop_reason) << "\n"
+      << "}\n";
+    return o.str();
+  }
+
+  const std::vector<std::string> &history_columns()
+  {
+    static const std::vector<std::string> names = [] {
+      std::vector<std::string> n;
+      for (const auto &c : columns)
+        n.push_back(c.name);
+      return n;
+    }();
+    return names;
+  }
+
+  void write_text_file(const std::string &path, const std::string &text)
+  {
+    std::ofstream out(path);
+    out << text;
+    out.close();
+    if (!out)
+      throw std::runtime_error(path + ": cannot write");
+  }
+
+  void write_history_csv(const std::string &path, const std::vector<HistoryRow> &rows)
+  {
+    std::ostringstream o;
+    bool first = true;
+    for (const auto &c : columns)
+      o << (first ? "" : ",") << c.name, first = false;
+    o << "\n";
+    for (const auto &r : rows)
+    {
+      first = true;
+      for (const auto &c : columns)
+        o << (first ? "" : ",") << number(c.value(r), "%.9g"), first = false;
+      o << "\n";
+    }
+    write_text_file(path, o.str());
+  }
+
+  // ---------------------------------------------------------------- HDF5 + XDMF
+
+  struct ResultsFile::Impl
+  {
+    struct MeshInfo
+    {
+      std::string name;
+      std::size_t n_vertices, n_cells;
+    };
+    struct SnapshotInfo
+    {
+      double time;
+      std::string group;
+      std::size_t n_particles;
+      std::vector<MeshInfo> meshes;
+    };
+
+    std::string path;
+    hid_t file = -1;
+    std::vector<SnapshotInfo> snapshots;
+
+    static void check(herr_t status, const std::string &what)
+    {
+      if (status < 0)
+        throw std::runtime_error("HDF5: " + what + " failed");
+    }
+
+    hid_t group(hid_t parent, const std::string &name)
+    {
+      const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      if (g < 0)
+        throw std::runtime_error("HDF5: cannot create group " + name + " in " + path);
+      return g;
+    }
+
+    template <typename T>
+    void dataset(hid_t parent, const std::string &name, const std::vector<T> &data, std::size_t n_columns,
+                 hid_t type)
+    {
+      const hsize_t rows = n_columns ? data.size() / n_columns : 0;
+      hsize_t dims[2] = {rows, static_cast<hsize_t>(n_columns)};
+      const hid_t space = H5Screate_simple(n_columns > 1 ? 2 : 1, dims, nullptr);
+      const hid_t set = H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      if (set < 0)
+      {
+        H5Sclose(space);
+        throw std::runtime_error("HDF5: cannot create dataset " + name + " in " + path);
+      }
+      if (!data.empty())
+        check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "writing " + name);
+      H5Dclose(set);
+      H5Sclose(space);
+    }
+
+    void attribute(hid_t object, const std::string &name, double value)
+    {
+      const hid_t space = H5Screate(H5S_SCALAR);
+      const hid_t a = H5Acreate2(object, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+      check(H5Awrite(a, H5T_NATIVE_DOUBLE, &value), "writing attribute " + name);
+      H5Aclose(a);
+      H5Sclose(space);
+    }
+  };
+
+  ResultsFile::ResultsFile(const std::string &h5_path)
+    : impl_(std::make_unique<Impl>())
+  {
+    impl_->path = h5_path;
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // errors become exceptions below, not stderr noise
+    impl_->file = H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (impl_->file < 0)
+      throw std::runtime_error(h5_path + ": cannot create the HDF5 file");
+    H5Gclose(impl_->group(impl_->file, "snapshots"));
+  }
+
+  ResultsFile::~ResultsFile()
+  {
+    if (impl_ && impl_->file >= 0)
+      H5Fclose(impl_->file);
+  }
+
+  std::size_t ResultsFile::n_snapshots() const { return impl_->snapshots.size(); }
+
+  void ResultsFile::add_snapshot(double time, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &meshes)
+  {
+    Impl &m = *impl_;
+    char name[32];
+    std::snprintf(name, sizeof name, "%06zu", m.snapshots.size());
+    Impl::SnapshotInfo info{time, std::string("/snapshots/") + name, particles.n, {}};
+    const hid_t g = m.group(m.file, info.group);
+    m.attribute(g, "time_s", time);
+    const hid_t pg = m.group(g, "particles");
+    const std::size_t n = particles.n;
+    auto check_size = [&](const std::vector<double> &v, std::size_t per, const char *what) {
+      if (v.size() != n * per && !(v.empty()))
+        throw std::logic_error(std::string("ParticleSnapshot::") + what + " has the wrong size");
+    };
+    check_size(particles.position, 3, "position");
+    check_size(particles.velocity, 3, "velocity");
+    check_size(particles.displacement, 3, "displacement");
+    check_size(particles.stress, 6, "stress");
+    check_size(particles.plastic_strain, 1, "plastic_strain");
+    check_size(particles.damage, 1, "damage");
+    // missing fields are written as zeros so that the XDMF stays valid
+    auto filled = [&](const std::vector<double> &v, std::size_t per) {
+      return v.empty() ? std::vector<double>(n * per, 0.0) : v;
+    };
+    m.dataset(pg, "position", filled(particles.position, 3), 3, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "velocity", filled(particles.velocity, 3), 3, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "displacement", filled(particles.displacement, 3), 3, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "stress", filled(particles.stress, 6), 6, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "plastic_strain", filled(particles.plastic_strain, 1), 1, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "damage", filled(particles.damage, 1), 1, H5T_NATIVE_DOUBLE);
+    H5Gclose(pg);
+    const hid_t mg = m.group(g, "meshes");
+    for (const auto &mesh : meshes)
+    {
+      const std::size_t nv = mesh.position.size() / 3, nc = mesh.hexahedra.size() / 8;
+      if (mesh.name.empty() || mesh.name.find_first_of("/ <>&\"") != std::string::npos)
+        throw std::logic_error("MeshSnapshot::name must be a plain word, got '" + mesh.name + "'");
+      const hid_t h = m.group(mg, mesh.name);
+      m.dataset(h, "position", mesh.position, 3, H5T_NATIVE_DOUBLE);
+      m.dataset(h, "displacement", mesh.displacement.empty() ? std::vector<double>(nv * 3, 0.0) : mesh.displacement,
+                3, H5T_NATIVE_DOUBLE);
+      m.dataset(h, "hexahedra", mesh.hexahedra, 8, H5T_NATIVE_UINT);
+      m.dataset(h, "von_mises", mesh.von_mises.empty() ? std::vector<double>(nc, 0.0) : mesh.von_mises, 1,
+                H5T_NATIVE_DOUBLE);
+      H5Gclose(h);
+      info.meshes.push_back({mesh.name, nv, nc});
+    }
+    H5Gclose(mg);
+    H5Gclose(g);
+    H5Fflush(m.file, H5F_SCOPE_GLOBAL);
+    m.snapshots.push_back(std::move(info));
+  }
+
+  std::size_t ResultsFile::copy_snapshots(const std::string &h5_path, double until)
+  {
+    Impl &m = *impl_;
+    const hid_t old = H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (old < 0)
+      return 0;
+    auto rows = [&](const std::string &dataset) -> std::size_t {
+      const hid_t d = H5Dopen2(old, dataset.c_str(), H5P_DEFAULT);
+      if (d < 0)
+        return 0;
+      const hid_t space = H5Dget_space(d);
+      hsize_t dims[2]   = {0, 0};
+      if (space >= 0 && H5Sget_simple_extent_ndims(space) >= 1 && H5Sget_simple_extent_ndims(space) <= 2)
+        H5Sget_simple_extent_dims(space, dims, nullptr);
+      if (space >= 0)
+        H5Sclose(space);
+      H5Dclose(d);
+      return dims[0];
+    };
+    std::size_t copied = 0;
+    const bool any     = H5Lexists(old, "/snapshots", H5P_DEFAULT) > 0;
+    for (std::size_t k = 0; any; ++k)
+    {
+      char from[32], to[32];
+      std::snprintf(from, sizeof from, "/snapshots/%06zu", k);
+      if (H5Lexists(old, from, H5P_DEFAULT) <= 0)
+        break;
+      double time   = 0;
+      const hid_t a = H5Aopen_by_name(old, from, "time_s", H5P_DEFAULT, H5P_DEFAULT);
+      const bool ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &time) >= 0;
+      if (a >= 0)
+        H5Aclose(a);
+      if (!ok || time > until)
+        break;
+      std::snprintf(to, sizeof to, "/snapshots/%06zu", m.snapshots.size());
+      Impl::SnapshotInfo info{time, to, rows(std::string(from) + "/particles/position"), {}};
+      const std::string meshes = std::string(from) + "/meshes";
+      const hid_t g            = H5Gopen2(old, meshes.c_str(), H5P_DEFAULT);
+      H5G_info_t gi{};
+      if (g >= 0 && H5Gget_info(g, &gi) >= 0)
+        for (hsize_t j = 0; j < gi.nlinks; ++j)
+        {
+          char name[256];
+          if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, j, name, sizeof name, H5P_DEFAULT) <= 0)
+            continue;
+          const std::string base = meshes + "/" + name;
+          info.meshes.push_back({name, rows(base + "/position"), rows(base + "/hexahedra")});
+        }
+      if (g >= 0)
+        H5Gclose(g);
+      if (H5Ocopy(old, from, m.file, to, H5P_DEFAULT, H5P_DEFAULT) < 0)
+        break;
+      m.snapshots.push_back(std::move(info));
+      ++copied;
+    }
+    H5Fclose(old);
+    return copied;
+  }
+
+  void ResultsFile::write_history(const std::vector<HistoryRow> &rows)
+  {
+    Impl &m = *impl_;
+    const hid_t g = m.group(m.file, "history");
+    for (const auto &c : columns)
+    {
+      std::vector<double> v;
+      v.reserve(rows.size());
+      for (const auto &r : rows)
+        v.push_back(c.value(r));
+      m.dataset(g, c.name, v, 1, H5T_NATIVE_DOUBLE);
+    }
+    H5Gclose(g);
+  }
+
+  void ResultsFile::close(const std::string &xdmf_path)
+  {
+    Impl &m = *impl_;
+    if (m.file >= 0)
+    {
+      Impl::check(H5Fclose(m.file), "closing " + m.path);
+      m.file = -1;
+    }
+    const std::string h5 = std::filesystem::path(m.path).filename().string();
+    std::ostringstream x;
+    auto item = [&](const std::string &dataset, std::size_t rows, std::size_t cols, const char *type = "Float",
+                    int precision = 8) {
+      std::ostringstream d;
+      d << "<DataItem Dimensions=\"" << rows;
+      if (cols > 1)
+        d << " " << cols;
+      d << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << h5 << ":"
+        << dataset << "</DataItem>";
+      return d.str();
+    };
+    x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+      << "<Grid Name=\"results\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto &s : m.snapshots)
+    {
+      x << " <Grid Name=\"step\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+        << "  <Time Value=\"" << number(s.time, "%.12g") << "\"/>\n";
+      if (s.n_particles > 0)
+      {
+        const std::string p = s.group + "/particles/";
+        const std::size_t n = s.n_particles;
+        x << "  <Grid Name=\"rock\" GridType=\"Uniform\">\n"
+          << "   <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
+          << "   <Geometry GeometryType=\"XYZ\">" << item(p + "position", n, 3) << "</Geometry>\n"
+          << "   <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item(p + "velocity", n, 3)
+          << "</Attribute>\n"
+          << "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"
+          << item(p + "displacement", n, 3) << "</Attribute>\n"
+          << "   <Attribute Name=\"stress\" AttributeType=\"Tensor6\" Center=\"Node\">" << item(p + "stress", n, 6)
+          << "</Attribute>\n"
+          << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
+          << item(p + "plastic_strain", n, 1) << "</Attribute>\n"
+          << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">" << item(p + "damage", n, 1)
+          << "</Attribute>\n"
+          << "  </Grid>\n";
+      }
+      for (const auto &mesh : s.meshes)
+      {
+        if (mesh.n_cells == 0)
+          continue;
+        const std::string p = s.group + "/meshes/" + mesh.name + "/";
+        x << "  <Grid Name=\"" << mesh.name << "\" GridType=\"Uniform\">\n"
+          << "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" << mesh.n_cells << "\">"
+          << item(p + "hexahedra", mesh.n_cells, 8, "UInt", 4) << "</Topology>\n"
+          << "   <Geometry GeometryType=\"XYZ\">" << item(p + "position", mesh.n_vertices, 3) << "</Geometry>\n"
+          << "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"
+          << item(p + "displacement", mesh.n_vertices, 3) << "</Attribute>\n"
+          << "   <Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Cell\">"
+          << item(p + "von_mises", mesh.n_cells, 1) << "</Attribute>\n"
+          << "  </Grid>\n";
+      }
+      x << " </Grid>\n";
+    }
+    x << "</Grid>\n</Domain>\n</Xdmf>\n";
+    write_text_file(xdmf_path, x.str());
+  }
+
+  // ---------------------------------------------------------------- plot
+
+  namespace
+  {
+    /// Runs argv, stdout to /dev/null, stderr into `log`. Returns the exit status (-1 if not run).
+    int run_program(const std::vector<std::string> &argv, const std::string &log)
+    {
+      const pid_t pid = fork();
+      if (pid < 0)
+        return -1;
+      if (pid == 0)
+      {
+        const int null = open("/dev/null", O_WRONLY);
+        const int err = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (null >= 0)
+          dup2(null, STDOUT_FILENO);
+        if (err >= 0)
+          dup2(err, STDERR_FILENO);
+        std::vector<char *> args;
+        for (const auto &a : argv)
+          args.push_back(const_cast<char *>(a.c_str()));
+        args.push_back(nullptr);
+        execvp(args[0], args.data());
+        _exit(127);
+      }
+      int status = 0;
+      if (waitpid(pid, &status, 0) < 0)
+        return -1;
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+
+    std::string first_line(const std::string &path)
+    {
+      std::ifstream in(path);
+      std::string line, last;
+      while (std::getline(in, line))
+        if (!line.empty())
+          last = line; // a Python traceback ends with the actual error
+      return last;
+    }
+  } // namespace
+
+  std::string run_plot_script(const std::string &script_name, const std::vector<std::string> &args,
+                              const std::string &png)
+  {
+    namespace fs = std::filesystem;
+    const std::string what   = fs::path(png).filename().string();
+    const std::string script = (script_directory() / script_name).string();
+    if (!fs::exists(script))
+      return "no " + script + " (" + what + " skipped)";
+    std::string python = "python3";
+    if (const char *env = std::getenv("COSIM_PYTHON"))
+      python = env;
+    else if (fs::exists("/usr/bin/python3"))
+      python = "/usr/bin/python3"; // Debian's, where python3-matplotlib lives
+    const std::string log = png + ".log";
+    std::vector<std::string> argv = {python, script};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const int status = run_program(argv, log);
+    std::string reason;
+    if (status == 127 || status == -1)
+      reason = python + " not found (install python3 and python3-matplotlib; " + what + " skipped)";
+    else if (status != 0)
+      reason = first_line(log) + " (" + what + " skipped)";
+    std::error_code ignored;
+    fs::remove(log, ignored);
+    return reason;
+  }
+
+  std::string plot_curve(const std::string &history_csv, const std::string &test,
+                         const std::string &png)
+  {
+    return run_plot_script("plot_curve.py", {history_csv, test, png}, png);
+  }
+} // namespace app

@@ -1,0 +1,433 @@
+#include <app/case_file.h>
+#include <app/checkpoint.h>
+#include <app/cli.h>
+#include <app/output_writer.h>
+#include <app/progress.h>
+#include <coupling/run_case.h>
+#include <app/run_command.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+namespace app
+{
+  using coupling::InputError;
+  using coupling::InstabilityError;
+  using coupling::RunInterrupted;
+  using coupling::Summary;
+  using coupling::HistoryRow;
+  using coupling::RunObserver;
+  using coupling::StateArrays;
+  using coupling::ParticleSnapshot;
+  using coupling::MeshSnapshot;
+  using coupling::run_case;
+  using coupling::find_extra;
+
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// Set by SIGINT / SIGTERM, polled by the time loop once per step (async-signal-safe).
+    volatile std::sig_atomic_t stop_signal = 0;
+
+    extern "C" void on_stop_signal(int signal)
+    {
+      stop_signal = signal;
+    }
+
+    /// Installs the stop handlers for the lifetime of a run; a second signal of the same kind
+    /// ends the process at once (SA_RESETHAND), for a user who cannot wait for the checkpoint.
+    class StopSignals
+    {
+    public:
+      StopSignals()
+      {
+        stop_signal = 0;
+        struct sigaction sa = {};
+        sa.sa_handler       = on_stop_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESETHAND;
+        sigaction(SIGINT, &sa, &old_int_);
+        sigaction(SIGTERM, &sa, &old_term_);
+      }
+      ~StopSignals()
+      {
+        sigaction(SIGINT, &old_int_, nullptr);
+        sigaction(SIGTERM, &old_term_, nullptr);
+      }
+      StopSignals(const StopSignals &)            = delete;
+      StopSignals &operator=(const StopSignals &) = delete;
+
+    private:
+      struct sigaction old_int_ = {}, old_term_ = {};
+    };
+
+    std::string json_string(const std::string &s)
+    {
+      std::string out = "\"";
+      for (const char c : s)
+      {
+        if (c == '"' || c == '\\')
+          out += '\\';
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned char>(c));
+          out += buf;
+        }
+        else
+          out += c;
+      }
+      return out + "\"";
+    }
+
+    /// Keeps the history in memory, streams snapshots into results.h5, shows progress, writes
+    /// checkpoints and the last good state into the staging folder.
+    class RecordingObserver : public RunObserver
+    {
+    public:
+      RecordingObserver(ResultsFile &results, ProgressDisplay &progress, const fs::path &folder)
+        : results_(results)
+        , progress_(progress)
+        , folder_(folder)
+      {}
+
+      bool stop_requested() override { return stop_signal != 0; }
+      void checkpoint(std::size_t step, const StateArrays &state) override
+      {
+        write_checkpoint((folder_ / "checkpoint.h5").string(), state);
+        checkpoint_step = static_cast<long>(step);
+      }
+      void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) override
+      {
+        ResultsFile good((folder_ / "last_good_state.h5").string());
+        good.add_snapshot(time, particles, {});
+        good.close((folder_ / "last_good_state.xdmf").string());
+        good_step = static_cast<long>(step);
+        good_time = time;
+      }
+
+      long checkpoint_step = -1, good_step = -1;
+      double good_time = 0;
+
+      void progress(std::size_t step, double time, double fraction) override
+      {
+        progress_.update(step, time, fraction);
+      }
+      void history(const HistoryRow &row) override { rows.push_back(row); }
+      void snapshot(double time, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &meshes) override
+      {
+        results_.add_snapshot(time, particles, meshes);
+      }
+
+      std::vector<HistoryRow> rows;
+
+    private:
+      ResultsFile &results_;
+      ProgressDisplay &progress_;
+      fs::path folder_;
+    };
+
+    struct RunOptions
+    {
+      std::string case_file;
+      std::string output;
+      std::vector<std::string> overrides;
+      std::string restart; ///< --restart DIR
+      bool force = false;
+      bool quiet = false;
+    };
+
+    RunOptions parse_options(const std::vector<std::string> &args)
+    {
+      RunOptions o;
+      ArgumentCursor cursor("run", args);
+      while (!cursor.done())
+      {
+        const std::string a = cursor.next();
+        if (a == "-o" || a == "--output")
+          o.output = cursor.value(a);
+        else if (a == "--set")
+          o.overrides.push_back(cursor.value(a));
+        else if (a == "--restart")
+          o.restart = cursor.value(a);
+        else if (a == "--force")
+          o.force = true;
+        else if (a == "--quiet" || a == "-q")
+          o.quiet = true;
+        else if (!a.empty() && a[0] == '-')
+          throw InputError("cosim run: unknown option '" + a + "'" +
+                           did_you_mean(a, {"--output", "--set", "--restart", "--force", "--quiet", "--help"}) +
+                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --force, --quiet");
+        else if (o.case_file.empty())
+          o.case_file = a;
+        else
+          throw InputError("cosim run: a second case file '" + a + "' (after '" + o.case_file +
+                           "'); run takes one CASE.prm");
+      }
+      if (!o.restart.empty())
+      {
+        if (!o.case_file.empty() || !o.overrides.empty())
+          throw InputError("cosim run --restart " + o.restart +
+                           ": takes no case file and no --set (the run continues with the "
+                           "parameters in " + o.restart + "/used_parameters.prm)");
+        o.case_file = (fs::path(o.restart) / "used_parameters.prm").string();
+        if (!fs::is_regular_file(o.case_file))
+          throw InputError("cosim run --restart " + o.restart + ": no used_parameters.prm there; "
+                           "give the output folder of an interrupted run");
+        return o;
+      }
+      if (o.case_file.empty())
+        throw InputError("cosim run: no case file; usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\"]");
+      return o;
+    }
+
+  } // namespace
+
+  fs::path check_output_folder(const std::string &output, const std::string &case_stem, const bool force,
+                               const std::string &restart)
+  {
+    const fs::path out = fs::absolute(output.empty() ? fs::path("results") / case_stem : fs::path(output))
+                           .lexically_normal();
+    const fs::path target = out.has_filename() ? out : out.parent_path();
+    std::error_code ec;
+    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
+      throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
+    const bool own_restart =
+      !restart.empty() && fs::equivalent(target, fs::path(restart), ec);
+    if (fs::exists(target, ec) && !force && !own_restart)
+      throw InputError("output folder " + target.string() +
+                       " already exists; use --force to replace it, or -o to choose another");
+    // the nearest existing ancestor must be a writable folder
+    fs::path ancestor = target.parent_path();
+    while (!ancestor.empty() && !fs::exists(ancestor, ec) && ancestor != ancestor.root_path())
+      ancestor = ancestor.parent_path();
+    if (!fs::is_directory(ancestor, ec))
+      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                       " is not a folder; choose a writable place with -o");
+    if (access(ancestor.c_str(), W_OK | X_OK) != 0)
+      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
+                       " is not writable; choose a writable place with -o");
+    return target;
+  }
+
+  fs::path sibling(const fs::path &target, const std::string &tag)
+  {
+    fs::path candidate;
+    for (int i = 0;; ++i)
+    {
+      candidate = target.parent_path() /
+                  ("." + target.filename().string() + "." + tag + "-" + std::to_string(getpid()) +
+                   (i ? "-" + std::to_string(i) : ""));
+      if (!fs::exists(candidate))
+        return candidate;
+    }
+  }
+
+  void publish(const fs::path &staging, const fs::path &target)
+  {
+    if (fs::exists(target))
+    {
+      const fs::path old = sibling(target, "old");
+      fs::rename(target, old);
+      fs::rename(staging, target);
+      fs::remove_all(old);
+    }
+    else
+      fs::rename(staging, target);
+  }
+
+  std::string run_help()
+  {
+    return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] [--quiet]\n"
+           "       cosim run --restart OUTDIR [-o NEWDIR] [--quiet]\n"
+           "\n"
+           "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case stem>):\n"
+           "  summary.json         peak stress and force, modulus, Poisson's ratio, energy checks\n"
+           "  history.csv          one row per output step (time_s, displacement_mm, force_kN, ...)\n"
+           "  results.h5, .xdmf    history, particle and platen-mesh snapshots (open the .xdmf in ParaView)\n"
+           "  curve.png            stress-strain (UCS, CTCS) or stress-displacement (BTS)\n"
+           "  used_parameters.prm  every parameter as used, the rock group's values included\n"
+           "\n"
+           "options:\n"
+           "  -o, --output OUTDIR  result folder; never replaced without --force\n"
+           "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set \"SPH/Particle spacing=0.002\"\n"
+           "  --force              replace an existing OUTDIR (only once the run has succeeded)\n"
+           "  --restart OUTDIR     continue an interrupted run from OUTDIR/checkpoint.h5 with\n"
+           "                       OUTDIR/used_parameters.prm (into OUTDIR unless -o)\n"
+           "  -q, --quiet          no progress display\n"
+           "\n"
+           "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, so a\n"
+           "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
+           "has in OUTDIR.failed.\n"
+           "\n"
+           "SIGINT / SIGTERM: the run stops after the current step, writes checkpoint.h5 and what it\n"
+           "has into OUTDIR, and exits with 4 (a second signal kills at once). Periodic checkpoints:\n"
+           "Output/Checkpoint interval (steps), Output/Checkpoint minutes.\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run\n"
+           "(OUTDIR.failed with last_good_state.h5), 4 interrupted (checkpoint written), 1 other failure.\n"
+           "\n"
+           "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end),\n"
+           "SI units, [default]:\n" +
+           case_file_keys_help();
+  }
+
+  int run_main(const std::vector<std::string> &args)
+  {
+    RunOptions options = parse_options(args);
+    const CaseFile case_file = read_case_file(options.case_file, options.overrides);
+    if (!options.restart.empty() && options.output.empty())
+      options.output = options.restart; // a restart continues into its own folder
+    const fs::path target = check_output_folder(options.output, fs::path(options.case_file).stem().string(),
+                                                options.force, options.restart);
+    for (const auto &w : case_file.warnings)
+      std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
+    return run_into_folder(case_file, target, options.force, options.quiet, nullptr, options.restart);
+  }
+
+  int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, const bool force,
+                      const bool quiet, Summary *result, const std::string &restart)
+  {
+    StateArrays resume;
+    if (!restart.empty())
+      resume = read_checkpoint((fs::path(restart) / "checkpoint.h5").string());
+
+    // Everything checked: from here on we write, but only into the staging folder.
+    std::error_code ec;
+    fs::path first_created; // the outermost folder we create for OUTDIR's parent, removed on failure
+    for (fs::path p = target.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+      first_created = p;
+    fs::create_directories(target.parent_path(), ec);
+    const fs::path staging = sibling(target, "tmp");
+    auto clean_up = [&] {
+      fs::remove_all(staging, ec);
+      if (!first_created.empty())
+        fs::remove_all(first_created, ec);
+    };
+    if (!fs::create_directory(staging, ec))
+    {
+      clean_up();
+      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() + " (" +
+                       ec.message() + "); choose a writable place with -o");
+    }
+    try
+    {
+      write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
+      ResultsFile results((staging / "results.h5").string());
+      ProgressDisplay progress(case_file.parameters.output.progress && !quiet);
+      if (!restart.empty())
+      {
+        // the interrupted run's snapshots up to its checkpoint come first
+        const auto scalars = resume.find("driver.scalars");
+        if (scalars != resume.end() && !scalars->second.empty())
+          results.copy_snapshots((fs::path(restart) / "results.h5").string(), scalars->second[0]);
+      }
+      RecordingObserver observer(results, progress, staging);
+      const StopSignals stop_signals;
+      const auto start = std::chrono::steady_clock::now();
+      auto write_all = [&](const Summary *summary) {
+        if (summary)
+          write_text_file((staging / "summary.json").string(), summary_json(*summary));
+        write_history_csv((staging / "history.csv").string(), observer.rows);
+        results.write_history(observer.rows);
+        results.close((staging / "results.xdmf").string());
+        if (!observer.rows.empty())
+        {
+          const std::string why = plot_curve((staging / "history.csv").string(), case_file.parameters.test,
+                                             (staging / "curve.png").string());
+          if (!why.empty())
+            std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
+        }
+        const std::string &test = case_file.parameters.test;
+        if (summary && (test == "UCS" || test == "BTS" || test == "CTCS"))
+        {
+          const std::string png = (staging / "failure_pattern.png").string();
+          const std::string why =
+            run_plot_script("plot_failure.py", {(staging / "results.h5").string(), test, png}, png);
+          if (!why.empty())
+            std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
+        }
+      };
+      try
+      {
+        Summary summary =
+          run_case(case_file.parameters, observer, restart.empty() ? nullptr : &resume);
+        progress.finish();
+        if (summary.wall_seconds <= 0)
+          summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        write_all(&summary);
+        publish(staging, target);
+        if (result)
+          *result = summary;
+        if (!quiet)
+        {
+          // the laboratory tests report a strength; a cutter or indenter its forces
+          const auto mean_normal = find_extra(summary, "mean_normal_force_kN");
+          const auto peak_normal = find_extra(summary, "peak_normal_force_kN");
+          if (mean_normal && peak_normal)
+            std::fprintf(stderr, "cosim: %s: normal force mean %.1f kN, peak %.1f kN, %zu steps, %.1f s -> %s\n",
+                         summary.test.c_str(), *mean_normal, *peak_normal, summary.n_steps, summary.wall_seconds,
+                         target.c_str());
+          else
+            std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
+                         summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
+        }
+        return 0;
+      }
+      catch (const InstabilityError &e)
+      {
+        progress.finish();
+        write_all(nullptr);
+        write_text_file((staging / "failure.txt").string(), std::string(e.what()) + "\n");
+        std::ostringstream json;
+        json << "{\n  \"status\": \"unstable\",\n  \"message\": " << json_string(e.what())
+             << ",\n  \"last_good_state\": ";
+        if (observer.good_step >= 0)
+          json << "{\"file\": \"last_good_state.h5\", \"xdmf\": \"last_good_state.xdmf\", "
+               << "\"step\": " << observer.good_step << ", \"time_s\": " << observer.good_time << "}";
+        else
+          json << "null";
+        json << "\n}\n";
+        write_text_file((staging / "summary.json").string(), json.str());
+        fs::path failed = target;
+        failed += ".failed";
+        if (fs::exists(failed))
+        {
+          if (force)
+            fs::remove_all(failed);
+          else
+            failed = sibling(failed, "new");
+        }
+        fs::rename(staging, failed);
+        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(), failed.c_str());
+        return 3;
+      }
+      catch (const RunInterrupted &e)
+      {
+        progress.finish();
+        write_all(nullptr);
+        std::ostringstream json;
+        json << "{\n  \"status\": \"interrupted\",\n  \"message\": " << json_string(e.what())
+             << ",\n  \"n_steps\": " << observer.checkpoint_step
+             << ",\n  \"checkpoint\": \"checkpoint.h5\",\n  \"restart\": "
+             << json_string("cosim run --restart " + target.string()) << "\n}\n";
+        write_text_file((staging / "summary.json").string(), json.str());
+        publish(staging, target);
+        std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
+                     e.what(), (target / "checkpoint.h5").c_str(), target.c_str());
+        return 4;
+      }
+    }
+    catch (...)
+    {
+      clean_up();
+      throw;
+    }
+  }
+} // namespace app

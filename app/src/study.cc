@@ -1,0 +1,514 @@
+#include <app/case_file.h>
+#include <app/cli.h>
+#include <diagnose/csv.h>
+#include <diagnose/material_table.h>
+#include <app/output_writer.h>
+#include <app/paths.h>
+#include <coupling/run_case.h>
+#include <app/run_command.h>
+#include <app/study.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace app
+{
+  using diagnose::trim;
+  using diagnose::MaterialGroup;
+  using diagnose::MaterialTable;
+  using coupling::InputError;
+  using coupling::CaseParameters;
+  using coupling::Summary;
+  using coupling::find_extra;
+
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+
+    /// One swept key and its values, as given.
+    struct Dimension
+    {
+      std::string key; ///< "Section/Key"; "Rock/Group" for --groups
+      std::vector<std::string> values;
+    };
+
+    struct StudyOptions
+    {
+      std::string case_file;
+      std::string output;
+      std::vector<std::string> overrides;
+      std::vector<Dimension> vary; ///< first one is the x-axis of the plot
+      std::string groups;          ///< "" none, "all", or "M1,M2,..."
+      bool force = false;
+      bool quiet = false;
+    };
+
+    std::vector<std::string> split_list(const std::string &text)
+    {
+      std::vector<std::string> items;
+      std::stringstream in(text);
+      std::string item;
+      while (std::getline(in, item, ','))
+        items.push_back(trim(item));
+      return items;
+    }
+
+    const char *usage =
+      "usage: cosim study CASE.prm --key \"Section/Key\" --values a,b,... [--vary "
+      "\"Section/Key=a,b\"] "
+      "[--groups M1,M2|all] [-o OUTDIR] [--set \"Section/Key=value\"] [--force] [--quiet]";
+
+    StudyOptions parse_options(const std::vector<std::string> &args)
+    {
+      StudyOptions o;
+      ArgumentCursor cursor("study", args);
+      std::string pending_key; // a --key waiting for its --values
+      auto add = [&](const std::string &key, const std::string &list, const std::string &option) {
+        const std::vector<std::string> values = split_list(list);
+        if (key.empty() || key.find('/') == std::string::npos)
+          throw InputError(
+            "cosim study: " + option + ": '" + key +
+            "' is not a parameter key; write it as \"Section/Key\", e.g. \"SPH/Particle spacing\"");
+        for (const auto &v : values)
+          if (v.empty())
+            throw InputError(
+              "cosim study: " + option + " for '" + key + "': '" + list +
+              "' has an empty value; give comma-separated values, e.g. 0.005,0.004,0.003");
+        for (const auto &d : o.vary)
+          if (d.key == key)
+            throw InputError("cosim study: key '" + key +
+                             "' is varied twice; give all its values in one list");
+        o.vary.push_back({key, values});
+      };
+      while (!cursor.done())
+      {
+        const std::string a = cursor.next();
+        if (a == "-o" || a == "--output")
+          o.output = cursor.value(a);
+        else if (a == "--set")
+          o.overrides.push_back(cursor.value(a));
+        else if (a == "--key")
+        {
+          if (!pending_key.empty())
+            throw InputError("cosim study: --key '" + pending_key +
+                             "' has no --values before the next --key");
+          pending_key = cursor.value(a);
+          if (pending_key.empty())
+            throw InputError("cosim study: --key needs a \"Section/Key\"");
+        }
+        else if (a == "--values")
+        {
+          if (pending_key.empty())
+            throw InputError("cosim study: --values without a --key before it; e.g. --key "
+                             "\"SPH/CSLH\" --values 1.05,1.2,1.3");
+          add(pending_key, cursor.value(a), "--values");
+          pending_key.clear();
+        }
+        else if (a == "--vary")
+        {
+          const std::string spec = cursor.value(a);
+          const auto eq          = spec.find('=');
+          if (eq == std::string::npos)
+            throw InputError("cosim study: --vary '" + spec +
+                             "' has no '='; write \"Section/Key=a,b,c\"");
+          add(trim(spec.substr(0, eq)), spec.substr(eq + 1), "--vary");
+        }
+        else if (a == "--groups")
+          o.groups = trim(cursor.value(a));
+        else if (a == "--force")
+          o.force = true;
+        else if (a == "--quiet" || a == "-q")
+          o.quiet = true;
+        else if (!a.empty() && a[0] == '-')
+          throw InputError(
+            "cosim study: unknown option '" + a + "'" +
+            did_you_mean(a, {"--output", "--set", "--key", "--values", "--vary", "--groups",
+                             "--force", "--quiet", "--help"}) +
+            "; accepted: -o, --set, --key, --values, --vary, --groups, --force, --quiet");
+        else if (o.case_file.empty())
+          o.case_file = a;
+        else
+          throw InputError("cosim study: a second case file '" + a + "' (after '" + o.case_file +
+                           "'); study takes one CASE.prm");
+      }
+      if (!pending_key.empty())
+        throw InputError("cosim study: --key '" + pending_key +
+                         "' has no --values; e.g. --values 0.7,0.8,0.9");
+      if (o.case_file.empty())
+        throw InputError(std::string("cosim study: no case file; ") + usage);
+      if (o.vary.empty() && o.groups.empty())
+        throw InputError(
+          std::string("cosim study: nothing to vary; give --key/--values, --vary or --groups; ") +
+          usage);
+      for (const auto &d : o.vary)
+        if (d.key == "Rock/Group" && !o.groups.empty())
+          throw InputError(
+            "cosim study: Rock/Group is varied and --groups is given; use one of them");
+      return o;
+    }
+
+    /// The "Rock/Data directory" that read_case_file resolved (an absolute path in
+    /// used_parameters).
+    std::string data_directory_of(const CaseFile &c)
+    {
+      std::istringstream in(c.used_parameters);
+      std::string line;
+      while (std::getline(in, line))
+      {
+        const std::string t = trim(line);
+        if (t.rfind("set Data directory", 0) != 0)
+          continue;
+        const auto eq = t.find('=');
+        if (eq == std::string::npos)
+          continue;
+        std::string value = t.substr(eq + 1);
+        const auto hash   = value.find('#');
+        if (hash != std::string::npos)
+          value = value.substr(0, hash);
+        value = trim(value);
+        if (!value.empty())
+          return value;
+      }
+      return data_directory().string();
+    }
+
+    /// A folder-name-safe spelling of "Key=value": the key's last part, blanks as '_'.
+    std::string folder_part(const std::string &key, const std::string &value)
+    {
+      std::string name = key.substr(key.rfind('/') + 1) + "=" + value;
+      for (auto &ch : name)
+        if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '=' ||
+              ch == '+'))
+          ch = '_';
+      return name;
+    }
+
+    /// A CSV cell: quoted when it holds a comma or quote.
+    std::string cell(const std::string &text)
+    {
+      if (text.find_first_of(",\"\n") == std::string::npos)
+        return text;
+      std::string q = "\"";
+      for (const char ch : text)
+        q += (ch == '"') ? std::string("\"\"") : std::string(1, ch);
+      return q + "\"";
+    }
+
+    std::string number(const double v, const char *format = "%.6g")
+    {
+      if (!std::isfinite(v))
+        return "";
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, format, v);
+      return buffer;
+    }
+
+    /// One planned run.
+    struct Run
+    {
+      std::vector<std::string> values; ///< one per dimension
+      std::string folder;
+      CaseFile case_file;
+      StudyReference reference;
+      int status = -1; ///< 0 done, 3 unstable, -1 not run
+      Summary summary;
+    };
+
+    StudyReference reference_of(const CaseParameters &p, const MaterialGroup *group)
+    {
+      StudyReference r;
+      const double c = p.rock.cohesion, phi = p.rock.friction_angle;
+      const double s = std::sin(phi * pi / 180.0), k = std::cos(phi * pi / 180.0);
+      if (p.test == "BTS")
+      {
+        r.envelope    = 2 * c * k / (1 + s);
+        r.measured    = group ? group->bts : r.envelope;
+        r.description = group ? "Table 3 BTS" : "Eq. 15 of the c, phi in use";
+      }
+      else if (p.test == "CTCS")
+      {
+        r.envelope = mohr_coulomb_axial_strength(c, phi, p.confining_pressure);
+        if (group && group->measured_cohesion && group->measured_friction_angle)
+        {
+          r.measured = mohr_coulomb_axial_strength(
+            *group->measured_cohesion, *group->measured_friction_angle, p.confining_pressure);
+          r.description = "envelope of Table 3 measured c, phi";
+        }
+        else
+        {
+          r.measured    = r.envelope;
+          r.description = "envelope of the c, phi in use";
+        }
+      }
+      else
+      {
+        r.envelope    = mohr_coulomb_axial_strength(c, phi, 0.0);
+        r.measured    = group ? group->ucs : r.envelope;
+        r.description = group ? "Table 3 UCS" : "Eq. 14 of the c, phi in use";
+      }
+      return r;
+    }
+
+    /// Runs tools/plot_study.py; "" on success, else a one-line reason.
+    std::string plot_study(const fs::path &csv, const fs::path &png,
+                           const std::vector<std::string> &columns)
+    {
+      std::vector<std::string> args = {csv.string(), png.string()};
+      args.insert(args.end(), columns.begin(), columns.end());
+      return run_plot_script("plot_study.py", args, png.string());
+    }
+  } // namespace
+
+  double mohr_coulomb_axial_strength(const double c, const double phi_deg, const double sigma3)
+  {
+    const double s = std::sin(phi_deg * pi / 180.0);
+    return 2 * c * std::cos(phi_deg * pi / 180.0) / (1 - s) + sigma3 * (1 + s) / (1 - s);
+  }
+
+  std::string study_help()
+  {
+    return std::string(usage) +
+           "\n"
+           "\n"
+           "Runs one case for every combination of the varied parameters (and rock groups), each "
+           "as\n"
+           "`cosim run` into a subfolder of OUTDIR (default results/study-<case stem>), one after "
+           "the\n"
+           "other, and writes:\n"
+           "  study.csv   one row per run: folder, the varied values, test, peak_stress_MPa,\n"
+           "              reference_MPa (Table 3 UCS / BTS of the group; CTCS: the Mohr-Coulomb "
+           "envelope\n"
+           "              of Table 3's measured c, phi where the group has them, else of the c, "
+           "phi in\n"
+           "              use), error_percent, envelope_MPa (closed form of the c, phi in use),\n"
+           "              youngs_modulus_GPa, platen_modulus_GPa, poissons_ratio, strain_at_peak,\n"
+           "              displacement_at_peak_mm, n_particles, n_steps, wall_seconds,\n"
+           "              max_kinetic_to_internal_energy, max_force_imbalance, quasi_static,\n"
+           "              stop_reason, status (ok / unstable), then the test's further results\n"
+           "              as summary.json names them (failure pattern: failure_onset_*,\n"
+           "              damaged_volume_fraction, crack_alignment; cutting forces)\n"
+           "  study.png   peak stress against the first varied key (one line per combination of "
+           "the\n"
+           "              others), and every run's curve (tools/plot_study.py)\n"
+           "  <run>/      each run's own result folder (summary.json, history.csv, ...)\n"
+           "\n"
+           "options:\n"
+           "  --key \"S/K\" --values a,b,...  one varied key and its values (repeatable pair)\n"
+           "  --vary \"S/K=a,b,...\"          the same in one argument (repeatable); all keys "
+           "combine\n"
+           "  --groups M1,M2,...|all        also vary Rock/Group (all: every group of the data "
+           "folder)\n"
+           "  -o, --output OUTDIR           result folder; never replaced without --force\n"
+           "  --set \"S/K=value\"             a fixed override for every run (repeatable)\n"
+           "  --force                       replace an existing OUTDIR (only once the study has "
+           "ended)\n"
+           "  -q, --quiet                   no line per run\n"
+           "\n"
+           "Every combination is read and checked before the first run: a bad key or value stops "
+           "the\n"
+           "study with one line and nothing written. The study is written into a hidden sibling "
+           "folder\n"
+           "and renamed to OUTDIR at the end. Example (the paper's Fig. 13 on the BTS):\n"
+           "  cosim study cases/bts/bts.prm --key \"SPH/CSLH\" --values 1.05,1.2,1.3 -o "
+           "results/bts-cslh\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input, 3 some runs unstable (marked in study.csv), 1 other "
+           "failure.\n";
+  }
+
+  int study_main(const std::vector<std::string> &args)
+  {
+    const StudyOptions options = parse_options(args);
+    const std::string stem     = fs::path(options.case_file).stem().string();
+    const CaseFile base        = read_case_file(options.case_file, options.overrides);
+    const MaterialTable table  = MaterialTable::read(data_directory_of(base));
+
+    std::vector<Dimension> dims; // series dimensions first, the x-axis last (fastest)
+    if (!options.groups.empty())
+    {
+      Dimension g{"Rock/Group", {}};
+      if (options.groups == "all")
+        for (const auto &m : table.groups())
+          g.values.push_back(m.group);
+      else
+        g.values = split_list(options.groups);
+      for (const auto &v : g.values)
+        if (v.empty())
+          throw InputError("cosim study: --groups '" + options.groups +
+                           "' has an empty name; e.g. M1,M2 or all");
+      dims.push_back(g);
+    }
+    for (std::size_t i = 1; i < options.vary.size(); ++i)
+      dims.push_back(options.vary[i]);
+    if (!options.vary.empty())
+      dims.push_back(options.vary.front());
+
+    // every combination, read and checked before anything is written
+    std::vector<Run> runs;
+    std::vector<std::size_t> index(dims.size(), 0);
+    for (bool more = true; more;)
+    {
+      Run run;
+      std::vector<std::string> overrides = options.overrides;
+      std::string folder;
+      for (std::size_t d = 0; d < dims.size(); ++d)
+      {
+        run.values.push_back(dims[d].values[index[d]]);
+        overrides.push_back(dims[d].key + "=" + run.values.back());
+        folder += (folder.empty() ? "" : "_") + folder_part(dims[d].key, run.values.back());
+      }
+      char prefix[16];
+      std::snprintf(prefix, sizeof prefix, "%02zu-", runs.size() + 1);
+      run.folder    = prefix + folder;
+      run.case_file = read_case_file(options.case_file, overrides);
+      run.reference =
+        reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock.group));
+      runs.push_back(std::move(run));
+      more = false;
+      for (std::size_t d = dims.size(); d-- > 0;)
+      {
+        if (++index[d] < dims[d].values.size())
+        {
+          more = true;
+          break;
+        }
+        index[d] = 0;
+      }
+    }
+    const fs::path target = check_output_folder(
+      options.output.empty() ? "results/study-" + stem : options.output, stem, options.force);
+    for (const auto &w : base.warnings)
+      std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
+
+    // Everything checked: write into the staging folder only.
+    std::error_code ec;
+    fs::create_directories(target.parent_path(), ec);
+    const fs::path staging = sibling(target, "tmp");
+    if (!fs::create_directory(staging, ec))
+      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() +
+                       " (" + ec.message() + "); choose a writable place with -o");
+    try
+    {
+      bool any_unstable = false;
+      for (std::size_t i = 0; i < runs.size(); ++i)
+      {
+        Run &run = runs[i];
+        run.status =
+          run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary);
+        any_unstable = any_unstable || run.status != 0;
+        if (!options.quiet)
+        {
+          std::string what;
+          for (std::size_t d = 0; d < dims.size(); ++d)
+            what += (what.empty() ? "" : ", ") + dims[d].key + "=" + run.values[d];
+          if (run.status == 0)
+            std::fprintf(stderr,
+                         "cosim study: [%zu/%zu] %s: peak %.2f MPa (%+.2f %% against %.2f, %s), "
+                         "%zu steps, %.1f s\n",
+                         i + 1, runs.size(), what.c_str(), run.summary.peak_stress * 1e-6,
+                         100 * (run.summary.peak_stress / run.reference.measured - 1),
+                         run.reference.measured * 1e-6, run.reference.description.c_str(),
+                         run.summary.n_steps, run.summary.wall_seconds);
+          else
+            std::fprintf(stderr, "cosim study: [%zu/%zu] %s: unstable (see %s.failed)\n", i + 1,
+                         runs.size(), what.c_str(), run.folder.c_str());
+        }
+      }
+
+      // study.csv
+      std::ostringstream csv;
+      csv << "folder";
+      std::vector<std::string> value_columns;
+      for (const auto &d : dims)
+        value_columns.push_back(d.key);
+      for (const auto &c : value_columns)
+        csv << "," << cell(c);
+      csv << ",test,peak_stress_MPa,reference_MPa,error_percent,envelope_MPa,reference,youngs_"
+             "modulus_GPa,"
+             "platen_modulus_GPa,poissons_ratio,strain_at_peak,displacement_at_peak_mm,peak_force_"
+             "kN,n_particles,"
+             "n_steps,wall_seconds,max_kinetic_to_internal_energy,max_force_imbalance,quasi_static,"
+             "stop_reason,"
+             "status";
+      // the test's own results (summary.json's further entries: failure pattern, cutting
+      // forces), named as the first finished run names them
+      std::vector<std::string> extra_columns;
+      for (const auto &run : runs)
+        if (run.status == 0)
+        {
+          for (const auto &[name, value] : run.summary.extra)
+            extra_columns.push_back(name);
+          break;
+        }
+      for (const auto &c : extra_columns)
+        csv << "," << cell(c);
+      csv << "\n";
+      double sum_error = 0, max_error = 0;
+      std::size_t n_ok = 0;
+      for (const auto &run : runs)
+      {
+        const Summary &s        = run.summary;
+        const CaseParameters &p = run.case_file.parameters;
+        csv << cell(run.folder);
+        for (const auto &v : run.values)
+          csv << "," << cell(v);
+        csv << "," << p.test;
+        if (run.status == 0)
+        {
+          const double error = 100 * (s.peak_stress / run.reference.measured - 1);
+          sum_error += std::abs(error), max_error = std::max(max_error, std::abs(error)), ++n_ok;
+          const double gauge = p.test == "BTS" ? p.diameter : p.length;
+          csv << "," << number(s.peak_stress * 1e-6) << "," << number(run.reference.measured * 1e-6)
+              << "," << number(error, "%.3f") << "," << number(run.reference.envelope * 1e-6) << ","
+              << cell(run.reference.description) << ","
+              << (s.youngs_modulus > 0 ? number(s.youngs_modulus * 1e-9) : "") << ","
+              << number(s.platen_modulus * 1e-9) << ","
+              << (s.poissons_ratio < 0 ? "" : number(s.poissons_ratio)) << ","
+              << number(s.strain_at_peak) << "," << number(s.strain_at_peak * gauge * 1e3) << ","
+              << number(s.peak_force * 1e-3) << "," << s.n_particles << "," << s.n_steps << ","
+              << number(s.wall_seconds, "%.2f") << "," << number(s.max_kinetic_to_internal_energy)
+              << "," << number(s.max_force_imbalance) << "," << (s.quasi_static ? "true" : "false")
+              << "," << cell(s.stop_reason) << ",ok";
+        }
+        else
+          csv << ",," << number(run.reference.measured * 1e-6) << ",,"
+              << number(run.reference.envelope * 1e-6) << "," << cell(run.reference.description)
+              << ",,,,,,,,,,,,,,unstable";
+        for (const auto &c : extra_columns)
+        {
+          csv << ",";
+          if (run.status == 0)
+            if (const auto value = find_extra(s, c))
+              csv << number(*value);
+        }
+        csv << "\n";
+      }
+      write_text_file((staging / "study.csv").string(), csv.str());
+      std::vector<std::string> plot_columns;
+      plot_columns.push_back(value_columns.back()); // x-axis
+      plot_columns.insert(plot_columns.end(), value_columns.begin(), value_columns.end() - 1);
+      const std::string why =
+        plot_study(staging / "study.csv", staging / "study.png", plot_columns);
+      if (!why.empty())
+        std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
+      publish(staging, target);
+      if (!options.quiet && n_ok > 0)
+        std::fprintf(stderr,
+                     "cosim study: %zu runs, mean |error| %.2f %%, max |error| %.2f %% -> %s\n",
+                     runs.size(), sum_error / n_ok, max_error, target.c_str());
+      return any_unstable ? 3 : 0;
+    }
+    catch (...)
+    {
+      fs::remove_all(staging, ec);
+      throw;
+    }
+  }
+} // namespace app

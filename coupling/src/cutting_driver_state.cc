@@ -1,0 +1,137 @@
+/// @file
+/// CuttingDriver::save_state / load_state: the state of an indentation or linear-cutting run as
+/// named flat arrays (checkpoint.h5, `cosim run --restart`). The block, the cutter and the contact
+/// save their own; the driver adds its clocks, accounts, history and the chip flags. Per-step
+/// scratch (hits, the cutter's contact forces) is recomputed by every step and is not state; the
+/// particles' contact forces of the last step are, because the chip release reads them first.
+
+#include "cutting_driver.h"
+#include "driver_common.h"
+
+#include <coupling/run_case.h>
+
+#include <fem/platen.h>
+#include <sph/body.h>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace coupling
+{
+  namespace
+  {
+    constexpr std::size_t n_scalars     = 18;
+    constexpr std::size_t history_width = 15; // every HistoryRow field, in declaration order
+
+  } // namespace
+
+  void CuttingDriver::save_state(StateArrays &out) const
+  {
+    body_->save_state(out, "body.");
+    cutter_->save_state(out, "cutter.");
+    contact_->save_state(out, "contact.");
+    out["driver.scalars"] = {time_,
+                             static_cast<double>(n_steps_),
+                             frame_work_,
+                             next_row_,
+                             next_snap_,
+                             dt_,
+                             static_cast<double>(n_substeps_),
+                             static_cast<double>(body_->n_particles()),
+                             travel_,
+                             depth_,
+                             impulse_[0],
+                             impulse_[1],
+                             impulse_[2],
+                             support_impulse_z_,
+                             impulse_time_,
+                             static_cast<double>(n_in_contact_),
+                             static_cast<double>(n_released_),
+                             released_energy_};
+    std::vector<double> history;
+    history.reserve(history_width * rows_.size());
+    for (const auto &r : rows_)
+      append_history_row(history, r, history_width);
+    out["driver.history"]       = std::move(history);
+    out["driver.rock_kinetic"]  = rock_kinetic_;
+    out["driver.rock_internal"] = rock_internal_;
+    out["driver.released"]      = std::vector<double>(released_.begin(), released_.end());
+    out["driver.contact_force"] = force_on_particles_;
+  }
+
+  void CuttingDriver::load_state(const StateArrays &in)
+  {
+    auto find = [&](const std::string &name) -> const std::vector<double> & {
+      const auto it = in.find(name);
+      if (it == in.end())
+        throw InputError("checkpoint: no " + name +
+                         "; not a checkpoint of an indentation or "
+                         "linear-cutting run");
+      return it->second;
+    };
+    const auto &d = find("driver.scalars");
+    const auto &h = find("driver.history");
+    if (d.size() != n_scalars || h.size() % history_width != 0)
+      throw InputError("checkpoint: driver.scalars / driver.history of another layout; not a "
+                       "checkpoint of an indentation or linear-cutting run");
+    // the same case gives the same particle count, time step and sub-cycling, bit for bit
+    if (d[7] != body_->n_particles() || d[5] != dt_ || d[6] != n_substeps_)
+    {
+      std::ostringstream os;
+      os << "checkpoint: it holds " << d[7] << " particles at dt = " << d[5] << " s, this case has "
+         << body_->n_particles() << " at dt = " << dt_
+         << " s; restart with the case's own used_parameters.prm";
+      throw InputError(os.str());
+    }
+    const std::size_t n_rows = h.size() / history_width;
+    const auto &k = find("driver.rock_kinetic"), &u = find("driver.rock_internal");
+    const auto &released = find("driver.released"), &force = find("driver.contact_force");
+    if (k.size() != n_rows || u.size() != n_rows || released.size() != released_.size() ||
+        force.size() != force_on_particles_.size())
+      throw InputError(
+        "checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
+    try
+    {
+      body_->load_state(in, "body.");
+      cutter_->load_state(in, "cutter.");
+      contact_->load_state(in, "contact.");
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(std::string("checkpoint: ") + e.what());
+    }
+    time_              = d[0];
+    n_steps_           = static_cast<std::size_t>(d[1]);
+    frame_work_        = d[2];
+    next_row_          = d[3];
+    next_snap_         = d[4];
+    travel_            = d[8];
+    depth_             = d[9];
+    impulse_           = {{d[10], d[11], d[12]}};
+    support_impulse_z_ = d[13];
+    impulse_time_      = d[14];
+    n_in_contact_      = static_cast<std::size_t>(d[15]);
+    n_released_        = static_cast<std::size_t>(d[16]);
+    released_energy_   = d[17];
+    rows_.clear();
+    for (std::size_t r = 0; r < n_rows; ++r)
+      rows_.push_back(history_row_at(h, r, history_width));
+    rock_kinetic_       = k;
+    rock_internal_      = u;
+    force_on_particles_ = force;
+    // the chip: released particles stay out of the contact (their stiffness factor 0)
+    bool any = false;
+    for (std::size_t i = 0; i < released_.size(); ++i)
+    {
+      released_[i] = released[i] != 0.0 ? 1 : 0;
+      any          = any || released_[i];
+    }
+    if (any)
+    {
+      std::vector<double> factor(released_.size());
+      for (std::size_t i = 0; i < factor.size(); ++i)
+        factor[i] = released_[i] ? 0.0 : 1.0;
+      contact_->set_stiffness_factors(std::move(factor));
+    }
+  }
+} // namespace coupling

@@ -1,0 +1,1049 @@
+#include "specimen_driver.h"
+
+#include "cutting_driver.h"
+#include "driver_common.h"
+#include "failure_pattern.h"
+
+#include <coupling/curve_analysis.h>
+#include <coupling/run_case.h>
+
+#include <fem/platen.h>
+#include <sph/body.h>
+#include <sph/lattice.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iterator>
+#include <sstream>
+#include <utility>
+
+namespace coupling
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    double deg(double a)
+    {
+      return a * pi / 180.0;
+    }
+
+    sph::RockModel rock_model(const std::string &name)
+    {
+      if (name == "elastic")
+        return sph::RockModel::elastic;
+      if (name == "mohr-coulomb")
+        return sph::RockModel::mohr_coulomb;
+      if (name == "mohr-coulomb-cutoff")
+        return sph::RockModel::mohr_coulomb_cutoff;
+      if (name == "hoek-brown")
+        return sph::RockModel::hoek_brown;
+      throw InputError("Rock/Model: unknown model '" + name +
+                       "'; accepted: elastic, mohr-coulomb, mohr-coulomb-cutoff, hoek-brown");
+    }
+
+    sph::MaterialParameters material(const RockParameters &r)
+    {
+      sph::MaterialParameters m;
+      m.model             = rock_model(r.model);
+      m.density           = r.density;
+      m.youngs_modulus    = r.youngs_modulus;
+      m.poissons_ratio    = r.poissons_ratio;
+      m.cohesion          = r.cohesion;
+      m.friction_angle    = deg(r.friction_angle);
+      m.dilation_angle    = deg(r.dilation_angle);
+      m.tensile_strength  = r.tensile_strength;
+      m.hb_sigma_ci       = r.ucs;
+      m.hb_mb             = r.hoek_brown_mi;
+      m.softening_strain  = r.softening_strain;
+      m.residual_fraction = r.residual_fraction;
+      m.residual_friction_angle =
+        r.residual_friction_angle < 0 ? -1.0 : deg(r.residual_friction_angle);
+      return m;
+    }
+
+    sph::Parameters numerics(const SphParameters &s)
+    {
+      sph::Parameters p;
+      p.spacing = s.spacing;
+      switch (s.form)
+      {
+        case 0:
+          p.form = sph::Formulation::updated_lagrangian;
+          break;
+        case 1:
+          p.form = sph::Formulation::updated_lagrangian_corrected;
+          break;
+        case 7:
+          p.form = sph::Formulation::total_lagrangian;
+          break;
+        case 8:
+          p.form = sph::Formulation::total_lagrangian_corrected;
+          break;
+        default:
+          throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
+      }
+      p.cslh = s.cslh;
+      // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
+      p.tssfac = std::min(s.tssfac, 1.0);
+      if (s.kernel == "cubic")
+        p.kernel = sph::KernelType::cubic_spline;
+      else if (s.kernel == "wendland")
+        p.kernel = sph::KernelType::wendland_c2;
+      else
+        throw InputError("SPH/Kernel: unknown kernel '" + s.kernel +
+                         "'; accepted: cubic, wendland");
+      p.evolve_h  = s.evolve_smoothing_length;
+      p.av_alpha  = s.av_alpha;
+      p.av_beta   = s.av_beta;
+      p.hourglass = s.hourglass;
+      p.n_threads = s.n_threads;
+      p.single_precision = s.single_precision;
+      return p;
+    }
+
+    /// Smooth start of the platen: 0 at t = 0, 1 from t = ramp on, C1 (sin^2 ramp).
+    double ramp(double t, double t_ramp)
+    {
+      if (t >= t_ramp)
+        return 1.0;
+      if (t <= 0)
+        return 0.0;
+      const double s = std::sin(0.5 * pi * t / t_ramp);
+      return s * s;
+    }
+  } // namespace
+
+  sph::MaterialParameters sph_material(const RockParameters &rock)
+  {
+    return material(rock);
+  }
+
+  sph::Parameters sph_numerics(const SphParameters &sph)
+  {
+    return numerics(sph);
+  }
+
+  double model_ucs(const RockParameters &r)
+  {
+    if (r.model == "elastic")
+      return 0.0;
+    if (r.model == "hoek-brown")
+      return r.ucs; // s = 1: sigma_1 = sigma_ci at sigma_3 = 0
+    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    return 2.0 * r.cohesion * c / (1.0 - s);
+  }
+
+  double model_tensile_strength(const RockParameters &r)
+  {
+    if (r.model == "elastic")
+      return 0.0;
+    if (r.model == "hoek-brown")
+      return r.hoek_brown_mi > 0 ? r.ucs / r.hoek_brown_mi : 0.0;
+    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    const double mc = 2.0 * r.cohesion * c / (1.0 + s);
+    if (r.model == "mohr-coulomb-cutoff" && r.tensile_strength > 0)
+      return std::min(mc, r.tensile_strength);
+    return mc;
+  }
+
+  LoadingPlan make_loading_plan(const CaseParameters &p)
+  {
+    LoadingPlan plan;
+    const bool bts          = p.test == "BTS";
+    const RockParameters &r = p.rock;
+    plan.reference_length   = bts ? p.diameter : p.length;
+    const double bar_speed  = std::sqrt(r.youngs_modulus / r.density);
+    plan.transit_time       = plan.reference_length / bar_speed;
+    // strain at which the specimen is expected to fail: it sets the rate, not the result
+    double eps_f = p.loading.end_strain;
+    if (r.model != "elastic")
+    {
+      if (bts)
+        // Hondros: the diametral strain at splitting is a few times sigma_t / E for a disc
+        // loaded over a narrow contact; 4 sigma_t / E is the order of the reference study's
+        // 0.014-0.020 mm on 50 mm discs
+        eps_f = 4.0 * model_tensile_strength(r) / r.youngs_modulus;
+      else
+      {
+        const double sn = std::sin(deg(r.friction_angle));
+        const double q  = r.model == "hoek-brown" ? 1.0 : (1 + sn) / (1 - sn);
+        eps_f           = (model_ucs(r) + (q - 1.0) * p.confining_pressure) / r.youngs_modulus;
+      }
+      eps_f = std::min(eps_f, p.loading.end_strain);
+    }
+    plan.expected_failure_strain = eps_f;
+    plan.strain_rate             = p.loading.strain_rate > 0
+                                     ? p.loading.strain_rate
+                                     : eps_f / (p.loading.transit_times * plan.transit_time);
+    plan.platen_speed            = plan.strain_rate * plan.reference_length;
+    // the platen reaches its speed smoothly over a few transit times (no impact wave)
+    plan.ramp_time = std::min(4.0 * plan.transit_time, 0.25 * eps_f / plan.strain_rate);
+    if (p.test == "CTCS")
+      plan.confinement_time = 10.0 * plan.transit_time;
+    plan.planned_strain =
+      r.model == "elastic" ? p.loading.end_strain : std::min(p.loading.end_strain, 1.5 * eps_f);
+    return plan;
+  }
+
+  SpecimenDriver::SpecimenDriver(const CaseParameters &parameters)
+      : prm_(parameters)
+  {
+    bts_  = prm_.test == "BTS";
+    ctcs_ = prm_.test == "CTCS";
+    if (!bts_ && !ctcs_ && prm_.test != "UCS")
+      throw InputError("Test/Type: unknown test '" + prm_.test + "'; accepted: UCS, BTS, CTCS");
+    const double smallest = std::min(prm_.diameter, prm_.length);
+    if (!(prm_.sph.spacing > 0) || prm_.sph.spacing > smallest / 6.0)
+      throw InputError("SPH/Particle spacing: " + std::to_string(prm_.sph.spacing) +
+                       " m must be positive and at most a sixth of the smallest specimen size (" +
+                       std::to_string(smallest / 6.0) + " m)");
+    plan_ = make_loading_plan(prm_);
+    build_specimen();
+    build_platens();
+    choose_time_step();
+    select_gauges();
+  }
+
+  SpecimenDriver::~SpecimenDriver() = default;
+
+  void SpecimenDriver::build_specimen()
+  {
+    const double dx               = prm_.sph.spacing;
+    const sph::Lattice<3> lattice = bts_ ? sph::make_disc<3>(prm_.diameter, prm_.length, dx)
+                                         : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
+    true_area_                    = lattice.true_section_area;
+    lattice_area_                 = lattice.lattice_section_area;
+    contact_radius_               = 0.5 * lattice.cell_size[2];
+    try
+    {
+      body_ = std::make_unique<sph::Body<3>>(numerics(prm_.sph), material(prm_.rock),
+                                             lattice.positions, lattice.volumes);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(e.what());
+    }
+    // heterogeneous rock: a Weibull strength factor per particle (Rock/Strength scatter)
+    apply_strength_scatter(*body_, prm_.rock, dx);
+    failure_ = std::make_unique<FailureWatch>(*body_, bts_);
+    // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
+    if (!bts_ && prm_.sph.loaded_face_correction)
+    {
+      body_->add_loaded_face(sph::Vector<3>(0, 0, 1));
+      body_->add_loaded_face(sph::Vector<3>(0, 0, -1));
+    }
+    const std::size_t n = body_->n_particles();
+    force_on_particles_.assign(3 * n, 0.0);
+    domain_size_ = 3.0 * std::max(prm_.diameter, prm_.length);
+    // kinetic-energy bound of the stability check: a stable run never holds more kinetic energy
+    // than the work done on it (energy balance); the floor covers the start, when that work is
+    // still tiny: the whole rock moving at the final platen speed
+    double rock_mass = 0;
+    for (const double m : body_->masses())
+      rock_mass += m;
+    energy_floor_ = 0.5 * rock_mass * plan_.platen_speed * plan_.platen_speed;
+  }
+
+  void SpecimenDriver::build_platens()
+  {
+    const double dx = prm_.sph.spacing;
+    fem::Parameters fp = fem_parameters(prm_.platens, 2.0 * dx);
+
+    fem::PlatenGeometry g;
+    g.thickness = prm_.platens.thickness;
+    if (bts_)
+    {
+      g.size_x = prm_.platens.diameter > 0 ? prm_.platens.diameter : 0.6 * prm_.diameter;
+      g.size_y = prm_.length + 4.0 * dx;
+      if (prm_.platens.shape == "jaw")
+      {
+        // ISRM curved jaw: contact arc of 1.5 disc radii unless given
+        g.shape      = fem::PlatenShape::jaw;
+        g.jaw_radius = prm_.platens.jaw_radius > 0 ? prm_.platens.jaw_radius : 0.75 * prm_.diameter;
+      }
+      else if (prm_.platens.shape == "flat")
+        g.shape = fem::PlatenShape::box;
+      else
+        throw InputError("Platens/Shape: unknown shape '" + prm_.platens.shape +
+                         "'; accepted: flat, jaw");
+    }
+    else
+    {
+      if (prm_.platens.shape != "flat")
+        throw InputError("Platens/Shape: " + prm_.test + " uses flat platens; jaw is for BTS only");
+      g.shape    = fem::PlatenShape::cylinder;
+      g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : prm_.diameter + 4.0 * dx;
+    }
+    double top_z = bts_ ? prm_.diameter : prm_.length, bottom_z = 0.0;
+    if (g.shape == fem::PlatenShape::jaw)
+    {
+      // the concave jaw bends towards the disc away from its apex, and its mesh chords the arc
+      // (the faces between nodes lie nearer the disc than the arc); the lattice's outer particles
+      // do not lie on the circle either. So place each jaw where its meshed face just touches the
+      // nearest particle (contact radius dx / 2), not at the disc's top and bottom, which would
+      // start with particles pressed into the jaw. The face height over x is read off a probe
+      // jaw with its apex at z = 0 (piecewise linear between the node columns; the arc runs
+      // along y unchanged).
+      g.side      = fem::PlatenSide::above;
+      g.contact_z = 0.0;
+      std::vector<std::pair<double, double>> profile; // (x, z) of the contact nodes, by x
+      try
+      {
+        const std::vector<double> xc = fem::Platen(g, fp).contact_positions();
+        for (std::size_t k = 0; k < xc.size(); k += 3)
+          profile.emplace_back(xc[k], xc[k + 2]);
+      }
+      catch (const std::invalid_argument &e)
+      {
+        throw InputError(std::string("Platens: ") + e.what());
+      }
+      std::sort(profile.begin(), profile.end());
+      // face height relative to the apex (<= 0) and the slope dz/dx of the face at x
+      auto face_at = [&](double x) -> std::pair<double, double> {
+        x       = std::clamp(x, profile.front().first, profile.back().first);
+        auto hi = std::lower_bound(profile.begin(), profile.end(), std::make_pair(x, -1e300));
+        if (hi == profile.begin())
+          ++hi;
+        auto lo = std::prev(hi);
+        while (lo != profile.begin() && lo->first >= hi->first)
+          --lo;
+        const double run   = hi->first - lo->first;
+        const double slope = run > 0 ? (hi->second - lo->second) / run : 0.0;
+        return {lo->second + slope * (x - lo->first), slope};
+      };
+      // the contact radius is measured along the face normal: a particle under a face of slope m
+      // needs a vertical clearance r_c sqrt(1 + m^2)
+      const double r_c = contact_radius_;
+      top_z = -1e300, bottom_z = 1e300;
+      for (const auto &p : body_->positions())
+      {
+        const auto [z, m]     = face_at(p[0]);
+        const double clearance = r_c * std::sqrt(1.0 + m * m);
+        top_z                  = std::max(top_z, p[2] + clearance - z);
+        bottom_z               = std::min(bottom_z, p[2] - clearance + z);
+      }
+    }
+    else
+    {
+      // flat platens at the specimen's faces, unless a particle reaches past them: a disc whose
+      // diameter the spacing does not divide has round(D / dx) cells, up to dx / 2 more than D,
+      // and would start pressed into both platens (an impulse at the first step). The cylinder's
+      // layers fit its length exactly (cells of L / round(L / dx) along z and a contact radius
+      // of half of that), so its platens stay at 0 and L; slack: round-off of the coordinates.
+      const double slack = 1e-9 * dx;
+      double       hi = -1e300, lo = 1e300;
+      for (const auto &p : body_->positions())
+      {
+        hi = std::max(hi, p[2] + contact_radius_);
+        lo = std::min(lo, p[2] - contact_radius_);
+      }
+      if (hi > top_z + slack)
+        top_z = hi;
+      if (lo < bottom_z - slack)
+        bottom_z = lo;
+    }
+    try
+    {
+      g.side      = fem::PlatenSide::above;
+      g.contact_z = top_z;
+      top_        = std::make_unique<fem::Platen>(g, fp);
+      g.side      = fem::PlatenSide::below;
+      g.contact_z = bottom_z;
+      bottom_     = std::make_unique<fem::Platen>(g, fp);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(std::string("Platens: ") + e.what());
+    }
+    top_->set_loaded_face_velocity([this](double t) { return top_velocity(t); });
+    force_on_top_.assign(3 * top_->n_contact_nodes(), 0.0);
+    force_on_bottom_.assign(3 * bottom_->n_contact_nodes(), 0.0);
+  }
+
+  double SpecimenDriver::top_velocity(double t) const
+  {
+    if (ctcs_ && t < plan_.confinement_time)
+    {
+      // follow the hydrostatic compression of the rock while the pressure ramps up, so that the
+      // axial stress stays equal to the confining pressure: d(eps)/dt = (1 - 2 nu)/E dp/dt
+      const double dp_dt = prm_.confining_pressure / plan_.confinement_time;
+      const double rate = (1.0 - 2.0 * prm_.rock.poissons_ratio) / prm_.rock.youngs_modulus * dp_dt;
+      return -rate * prm_.length;
+    }
+    const double t_load = t - plan_.confinement_time;
+    return -plan_.platen_speed * ramp(t_load, plan_.ramp_time);
+  }
+
+  void SpecimenDriver::choose_time_step()
+  {
+    time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
+    const double dt_sph = body_->stable_time_step() * time_step_scale_;
+    // loaded faces: each outer particle is pressed in proportion to the area it carries, so a
+    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas)
+    const auto &area = body_->loaded_face_areas();
+    std::vector<double> factor;
+    double largest_factor = 1.0;
+    if (!area.empty())
+    {
+      double sum = 0;
+      int count  = 0;
+      for (const double a : area)
+        if (a > 0)
+          sum += a, ++count;
+      factor.assign(area.size(), 1.0);
+      for (std::size_t i = 0; i < area.size(); ++i)
+        if (area[i] > 0)
+          factor[i] = area[i] * count / sum;
+      largest_factor = *std::max_element(factor.begin(), factor.end());
+    }
+
+    // Penalty stiffness: a fraction s of the central-difference bound 4 m_eff / dt^2 at the rock's
+    // own step, for the lightest particle against the lightest contact node (rigid: the particle
+    // alone). The coupled step is dt_sph / sqrt(1 + s f), f the largest stiffness factor of the
+    // loaded faces, so that the rock's stiffness and the stiffest contact spring together stay
+    // inside the bound (coupled_time_step() gives the proof).
+    const double s = prm_.platens.contact_stiffness_scale;
+    dt_            = coupled_time_step(dt_sph, s * largest_factor);
+    const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
+    // the platens sub-cycle when their stable step is the smaller one; the contact force is held
+    // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
+    n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
+
+    const auto &m           = body_->masses();
+    const double m_particle = *std::min_element(m.begin(), m.end());
+    double m_node           = 0.0;
+    if (!top_->is_rigid())
+    {
+      const auto a = top_->contact_masses(), b = bottom_->contact_masses();
+      m_node =
+        std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
+    }
+    ContactParameters cp;
+    cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
+    cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
+    cp.radius                                = contact_radius_;
+    contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    if (!factor.empty())
+    {
+      contact_top_->set_stiffness_factors(factor);
+      contact_bottom_->set_stiffness_factors(factor);
+    }
+  }
+
+  void SpecimenDriver::select_gauges()
+  {
+    const auto &x0  = body_->reference_positions();
+    const double dx = prm_.sph.spacing;
+    if (bts_)
+      return;
+    // axial gauges: the particle layers nearest to L/4 and 3L/4 (middle half of the specimen,
+    // away from the end effects, as strain gauges on a specimen); radial: the outermost ring at
+    // mid-height
+    auto nearest_layer = [&](double z) {
+      double best = 1e300;
+      for (const auto &p : x0)
+        best = std::min(best, std::abs(p[2] - z));
+      std::vector<unsigned int> set;
+      for (unsigned int i = 0; i < x0.size(); ++i)
+        if (std::abs(std::abs(x0[i][2] - z) - best) < 1e-9 * prm_.length &&
+            std::abs(x0[i][2] - z) <= best + 1e-12)
+          set.push_back(i);
+      return set;
+    };
+    gauge_low_     = nearest_layer(0.25 * prm_.length);
+    gauge_high_    = nearest_layer(0.75 * prm_.length);
+    gauge_length0_ = x0[gauge_high_[0]][2] - x0[gauge_low_[0]][2];
+    const auto mid = nearest_layer(0.5 * prm_.length);
+    double r_max   = 0;
+    for (unsigned int i : mid)
+      r_max = std::max(r_max, std::hypot(x0[i][0], x0[i][1]));
+    for (unsigned int i : mid)
+      if (std::hypot(x0[i][0], x0[i][1]) > r_max - 0.75 * dx)
+        gauge_ring_.push_back(i);
+  }
+
+  void SpecimenDriver::step()
+  {
+    body_->compute_forces();
+    if (ctcs_)
+      body_->set_surface_pressure(prm_.confining_pressure *
+                                  std::min(1.0, time_ / plan_.confinement_time));
+
+    // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
+    const ContactSurface s_top = contact_surface(*top_), s_bottom = contact_surface(*bottom_);
+    const auto &x = body_->positions();
+    const auto &v = body_->velocities();
+    const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
+                                     body_->n_particles()};
+    std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
+    std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
+    std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);
+    contact_top_->apply(particles, s_top, dt_, force_on_particles_, force_on_top_);
+    contact_bottom_->apply(particles, s_bottom, dt_, force_on_particles_, force_on_bottom_);
+    max_exchange_imbalance_ = std::max(max_exchange_imbalance_, exchange_imbalance());
+
+    // SPH <- contact forces; FEM <- their reactions (the sums cancel to round-off)
+    auto &f_ext = body_->external_forces();
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+      for (int d = 0; d < 3; ++d)
+        f_ext[i][d] += force_on_particles_[3 * i + d];
+    body_->integrate(dt_);
+
+    // work of the boundary loads (confining pressure, loaded-face correction) over this step,
+    // with the half-step velocities
+    {
+      const auto &fp = body_->pressure_forces();
+      double w       = 0;
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        w += fp[i].dot(v[i]);
+      pressure_work_ += w * dt_;
+    }
+
+    const double h = dt_ / n_substeps_;
+    for (int k = 0; k < n_substeps_; ++k)
+    {
+      top_->add_contact_forces(force_on_top_);
+      bottom_->add_contact_forces(force_on_bottom_);
+      const double t = time_ + k * h;
+      top_->step(t, h);
+      bottom_->step(t, h);
+      // frame work: load-cell reaction times the loaded face's prescribed velocity (bottom fixed)
+      frame_work_ += top_->reaction_force() * top_velocity(t + 0.5 * h) * h;
+    }
+    time_ += dt_;
+    ++n_steps_;
+  }
+
+  double SpecimenDriver::exchange_imbalance() const
+  {
+    // what the rock receives and what the platens receive, each pair force counted on both sides
+    double total[3] = {0, 0, 0}, scale = 0;
+    for (std::size_t i = 0; i < force_on_particles_.size(); i += 3)
+    {
+      const double *f = &force_on_particles_[i];
+      scale += std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+      for (int d = 0; d < 3; ++d)
+        total[d] += f[d];
+    }
+    for (const auto *platen : {&force_on_top_, &force_on_bottom_})
+      for (std::size_t i = 0; i < platen->size(); ++i)
+        total[i % 3] += (*platen)[i];
+    if (!(scale > 0))
+      return 0.0;
+    return std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / scale;
+  }
+
+  HistoryRow SpecimenDriver::measure() const
+  {
+    HistoryRow r;
+    r.time            = time_;
+    r.displacement    = bottom_->loaded_face_displacement() - top_->loaded_face_displacement();
+    r.force           = top_->compressive_force();
+    r.force_bottom    = bottom_->compressive_force();
+    const double load = 0.5 * (r.force + r.force_bottom);
+    if (bts_)
+    {
+      r.stress = 2.0 * load / (pi * prm_.diameter * prm_.length);
+      r.strain = r.displacement / prm_.diameter;
+    }
+    else
+    {
+      // CTCS: the pressure acts on the ends too, so the frame carries sigma_1 - p (a balanced
+      // piston); the axial stress is the load over the true area plus the pressure
+      const double p = ctcs_ ? body_->surface_pressure() : 0.0;
+      r.stress       = load / true_area_ + p;
+      r.strain       = r.displacement / prm_.length;
+    }
+    const auto &x  = body_->positions();
+    const auto &x0 = body_->reference_positions();
+    if (!bts_)
+    {
+      double z_lo = 0, z_hi = 0;
+      for (unsigned int i : gauge_low_)
+        z_lo += x[i][2];
+      for (unsigned int i : gauge_high_)
+        z_hi += x[i][2];
+      z_lo /= gauge_low_.size();
+      z_hi /= gauge_high_.size();
+      r.axial_gauge_strain = 1.0 - (z_hi - z_lo) / gauge_length0_;
+      double er            = 0;
+      for (unsigned int i : gauge_ring_)
+        er += std::hypot(x[i][0], x[i][1]) / std::hypot(x0[i][0], x0[i][1]) - 1.0;
+      r.radial_strain = er / gauge_ring_.size();
+    }
+    const sph::Energies e = body_->energies();
+    const double pen      = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
+    r.kinetic_energy      = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
+    r.internal_energy     = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
+    r.dissipated_energy   = e.dissipated() + contact_top_->friction_dissipation() +
+                          contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
+                          bottom_->damping_dissipation();
+    r.external_work = frame_work_ + pressure_work_;
+    double failed   = 0;
+    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+      failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
+    r.n_failed = failed;
+    return r;
+  }
+
+  void SpecimenDriver::check_stability(RunObserver &observer)
+  {
+    const auto &x        = body_->positions();
+    const auto &v        = body_->velocities();
+    const auto &h        = body_->smoothing_lengths();
+    const auto &m        = body_->masses();
+    const double c       = body_->wave_speed();
+    const unsigned int n = body_->n_particles();
+    // where: a particle id and position, or (i < 0) the platen named in `what`
+    auto fail = [&](const std::string &what, long i, const std::string &cause) {
+      std::ostringstream os;
+      os << "step " << n_steps_ << ", t = " << time_ << " s: " << what;
+      if (i >= 0)
+        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
+           << ") m";
+      os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
+         << ", t = " << last_good_time_ << " s";
+      observer.last_good_state(last_good_step_, last_good_time_, last_good_);
+      throw InstabilityError(os.str());
+    };
+    const std::string too_large =
+      "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
+      "near 1) or a loading rate far above quasi-static";
+    // one pass over the particles, a contiguous chunk per thread; the chunks' results are
+    // combined in chunk order, so the first bad particle, the fastest one and the one with the
+    // smallest step are the lowest-index ones, as in a serial loop, and the kinetic energy is the
+    // same for a given thread count
+    struct Scan
+    {
+      long bad = -1;              // first particle that is non-finite or out of the domain
+      bool bad_finite = true;     // ... and whether it was finite (then: out of the domain)
+      double kinetic = 0, dt_min = 1e300, v_max = 0;
+      unsigned int i_dt = 0, i_v = 0;
+    };
+    std::vector<Scan> scans(static_cast<std::size_t>(omp_get_max_threads()));
+#pragma omp parallel
+    {
+      const long t = omp_get_thread_num(), nt = omp_get_num_threads();
+      Scan &r      = scans[t];
+      for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
+      {
+        const auto &s3 = body_->stress3(i);
+        const bool finite =
+          std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
+          std::isfinite(s3.sum() + h[i]);
+        if (!finite || !(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
+                         std::abs(x[i][2]) < domain_size_))
+        {
+          r.bad        = i;
+          r.bad_finite = finite;
+          break;
+        }
+        const double speed = v[i].norm();
+        r.kinetic += 0.5 * m[i] * speed * speed;
+        if (speed > r.v_max)
+        {
+          r.v_max = speed;
+          r.i_v   = static_cast<unsigned int>(i);
+        }
+        const double dt_i = h[i] / (c + speed);
+        if (dt_i < r.dt_min)
+        {
+          r.dt_min = dt_i;
+          r.i_dt   = static_cast<unsigned int>(i);
+        }
+      }
+    }
+    double kinetic = 0, dt_min = 1e300, v_max = 0;
+    unsigned int i_dt = 0, i_v = 0;
+    for (const Scan &r : scans)
+    {
+      if (r.bad >= 0)
+      {
+        if (!r.bad_finite)
+          fail("non-finite position, velocity, stress or smoothing length", r.bad, too_large);
+        fail("a particle left the domain (|x| >= " + std::to_string(domain_size_) + " m)", r.bad,
+             too_large + ", or a platen that lost contact");
+      }
+      kinetic += r.kinetic;
+      if (r.v_max > v_max)
+      {
+        v_max = r.v_max;
+        i_v   = r.i_v;
+      }
+      if (r.dt_min < dt_min)
+      {
+        dt_min = r.dt_min;
+        i_dt   = r.i_dt;
+      }
+    }
+    const double work = std::max(0.0, frame_work_ + pressure_work_);
+    if (kinetic > 10.0 * (work + energy_floor_))
+    {
+      std::ostringstream os;
+      os << "rock kinetic energy " << kinetic << " J above ten times the work done on it plus "
+         << "the start-up allowance (" << work << " + " << energy_floor_
+         << " J), fastest particle |v| = " << v_max << " m/s";
+      fail(os.str(), i_v, too_large);
+    }
+    // the step in use is fixed; the stable one shrinks when particles approach the wave speed or
+    // smoothing lengths collapse
+    const double dt_stable = prm_.sph.tssfac * dt_min;
+    if (dt_stable < 0.5 * dt_)
+    {
+      std::ostringstream os;
+      os << "collapsing time step: the stable step " << dt_stable << " s fell below half the step "
+         << "in use " << dt_ << " s (|v| = " << v[i_dt].norm() << " m/s, h = " << h[i_dt] << " m)";
+      fail(os.str(), i_dt, too_large);
+    }
+    const std::array<const fem::Platen *, 2> platens{{top_.get(), bottom_.get()}};
+    for (int k = 0; k < 2; ++k)
+    {
+      const fem::Platen &pl = *platens[k];
+      if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
+      {
+        std::ostringstream os;
+        os << "non-finite state of the " << (k == 0 ? "top" : "bottom") << " platen (reaction "
+           << pl.reaction_force() << " N, kinetic energy " << pl.kinetic_energy()
+           << " J, loaded-face displacement " << pl.loaded_face_displacement() << " m)";
+        const std::vector<double> xc = pl.contact_positions();
+        for (std::size_t j = 0; j < xc.size() / 3; ++j)
+          if (!std::isfinite(xc[3 * j] + xc[3 * j + 1] + xc[3 * j + 2]))
+          {
+            os << ", first non-finite contact node " << j;
+            break;
+          }
+        fail(os.str(), -1,
+             "a platen time step above its stable limit or a contact stiffness near its bound "
+             "(Platens/Contact stiffness scale)");
+      }
+    }
+
+    // the state passed: keep it as the last good one (buffers reused, no allocation per step)
+    last_good_.n = n;
+    last_good_.position.resize(3 * n);
+    last_good_.velocity.resize(3 * n);
+    last_good_.displacement.resize(3 * n);
+    last_good_.stress.resize(6 * n);
+    last_good_.plastic_strain.resize(n);
+    last_good_.damage.resize(n);
+    const auto &x0 = body_->reference_positions();
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(n); ++i)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        last_good_.position[3 * i + d]     = x[i][d];
+        last_good_.velocity[3 * i + d]     = v[i][d];
+        last_good_.displacement[3 * i + d] = x[i][d] - x0[i][d];
+      }
+      const auto &t      = body_->stress3(i);
+      const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
+      std::copy(s6, s6 + 6, last_good_.stress.begin() + 6 * i);
+      last_good_.plastic_strain[i] = body_->plastic_strain(i);
+      last_good_.damage[i]         = body_->damage(i);
+    }
+    last_good_step_ = n_steps_;
+    last_good_time_ = time_;
+  }
+
+  namespace
+  {
+    // the laboratory-test columns (the cutting columns rolling_force, side_force stay zero here)
+    constexpr std::size_t history_width = 13; // HistoryRow without the cutting forces
+  } // namespace
+
+  void SpecimenDriver::save_state(StateArrays &out) const
+  {
+    body_->save_state(out, "body.");
+    top_->save_state(out, "platen_top.");
+    bottom_->save_state(out, "platen_bottom.");
+    contact_top_->save_state(out, "contact_top.");
+    contact_bottom_->save_state(out, "contact_bottom.");
+    out["driver.scalars"] = {time_,
+                             static_cast<double>(n_steps_),
+                             frame_work_,
+                             pressure_work_,
+                             next_row_,
+                             next_snap_,
+                             peak_force_,
+                             armed_ ? 1.0 : 0.0,
+                             dt_,
+                             static_cast<double>(n_substeps_),
+                             static_cast<double>(body_->n_particles()),
+                             touching_ ? 1.0 : 0.0,
+                             touch_strain_};
+    std::vector<double> history;
+    history.reserve(history_width * rows_.size());
+    for (const auto &r : rows_)
+      append_history_row(history, r, history_width);
+    out["driver.history"] = std::move(history);
+    out["driver.failure"] = failure_->state();
+    out["driver.rock_kinetic"]  = rock_kinetic_;
+    out["driver.rock_internal"] = rock_internal_;
+  }
+
+  void SpecimenDriver::load_state(const StateArrays &in)
+  {
+    const auto s = in.find("driver.scalars");
+    const auto h = in.find("driver.history");
+    if (s == in.end() || s->second.size() != 13 || h == in.end() ||
+        h->second.size() % history_width != 0)
+      throw InputError("checkpoint: no driver state (driver.scalars, driver.history); not a "
+                       "checkpoint of cosim run");
+    const auto &d = s->second;
+    // the same case gives the same particle count, time step and sub-cycling, bit for bit
+    if (d[10] != body_->n_particles() || d[8] != dt_ || d[9] != n_substeps_)
+    {
+      std::ostringstream os;
+      os << "checkpoint: it holds " << d[10] << " particles at dt = " << d[8]
+         << " s, this case has " << body_->n_particles() << " at dt = " << dt_
+         << " s; restart with the case's own used_parameters.prm";
+      throw InputError(os.str());
+    }
+    try
+    {
+      body_->load_state(in, "body.");
+      top_->load_state(in, "platen_top.");
+      bottom_->load_state(in, "platen_bottom.");
+      contact_top_->load_state(in, "contact_top.");
+      contact_bottom_->load_state(in, "contact_bottom.");
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(std::string("checkpoint: ") + e.what());
+    }
+    time_          = d[0];
+    n_steps_       = static_cast<std::size_t>(d[1]);
+    frame_work_    = d[2];
+    pressure_work_ = d[3];
+    next_row_      = d[4];
+    next_snap_     = d[5];
+    peak_force_    = d[6];
+    armed_         = d[7] != 0.0;
+    touching_      = d[11] != 0.0;
+    touch_strain_  = d[12];
+    const auto f = in.find("driver.failure");
+    if (f == in.end() || f->second.size() != failure_->state().size())
+      throw InputError("checkpoint: no driver.failure array; a checkpoint of an older cosim?");
+    failure_->set_state(f->second);
+    const auto k = in.find("driver.rock_kinetic"), u = in.find("driver.rock_internal");
+    if (k == in.end() || u == in.end() || k->second.size() != h->second.size() / history_width ||
+        u->second.size() != k->second.size())
+      throw InputError("checkpoint: no driver.rock_kinetic / rock_internal per history row; a "
+                       "checkpoint of an older cosim?");
+    rock_kinetic_  = k->second;
+    rock_internal_ = u->second;
+    rows_.clear();
+    for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
+      rows_.push_back(history_row_at(h->second, k, history_width));
+  }
+
+  ParticleSnapshot SpecimenDriver::particle_snapshot() const
+  {
+    return coupling::particle_snapshot(*body_);
+  }
+
+  std::vector<MeshSnapshot> SpecimenDriver::mesh_snapshots() const
+  {
+    return {mesh_snapshot("platen_top", *top_), mesh_snapshot("platen_bottom", *bottom_)};
+  }
+
+  Summary SpecimenDriver::run(RunObserver &observer, const StateArrays *resume)
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    const double t_plan =
+      plan_.confinement_time + plan_.ramp_time * 0.5 + plan_.planned_strain / plan_.strain_rate;
+    const double t_end =
+      plan_.confinement_time + plan_.ramp_time * 0.5 + prm_.loading.end_strain / plan_.strain_rate;
+    const double row_interval  = t_plan / std::max(1, prm_.output.n_history_rows);
+    const double snap_interval = t_plan / std::max(1, prm_.output.n_snapshots);
+
+    if (resume)
+    {
+      load_state(*resume);
+      for (const auto &r : rows_)
+        observer.history(r);
+    }
+    check_stability(observer); // the start (or the restored state) is the first good state
+
+    auto last_checkpoint    = std::chrono::steady_clock::now();
+    const auto &rows        = rows_;
+    bool stop               = false;
+    std::string stop_reason = "end strain";
+    while (!stop)
+    {
+      step();
+      check_stability(observer);
+      const bool last = time_ >= t_end;
+      if (time_ >= next_row_ || last)
+      {
+        const HistoryRow r = measure();
+        if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
+          throw InstabilityError("step " + std::to_string(n_steps_) +
+                                 ": non-finite platen force or energy; likely cause: a time step "
+                                 "above the stable limit");
+        rows_.push_back(r);
+        const sph::Energies rock = body_->energies();
+        rock_kinetic_.push_back(non_affine_kinetic_energy(*body_));
+        rock_internal_.push_back(rock.internal);
+        observer.history(r);
+        failure_->observe(*body_, r.stress);
+        next_row_ += row_interval;
+        const bool loading = time_ > plan_.confinement_time;
+        // the load the specimen carries: mean of both load cells (the stress wave that crosses
+        // the specimen at the start makes each one oscillate on its own)
+        const double load = 0.5 * (r.force + r.force_bottom);
+        peak_force_       = loading ? std::max(peak_force_, load) : peak_force_;
+        // the failure criterion is armed once the specimen yields somewhere or has passed half of
+        // its expected failure strain, so that the start-up transient cannot end the run
+        // strain counts from the first contact on both sides: curved jaws start with a gap
+        // (the arc over the lattice's discrete top), which the platen closes first
+        if (!touching_ && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
+        {
+          touching_     = true;
+          touch_strain_ = r.strain;
+        }
+        armed_ = armed_ || r.n_failed > 0 ||
+                (touching_ && r.strain - touch_strain_ > 0.5 * plan_.expected_failure_strain);
+        // the load has fallen past the post-peak drop: the specimen has failed
+        if (loading && armed_ && peak_force_ > 0 &&
+            load < (1.0 - prm_.loading.post_peak_drop) * peak_force_)
+        {
+          stop        = true;
+          stop_reason = "post-peak drop";
+        }
+        if (last)
+          stop = true;
+      }
+      if (time_ >= next_snap_ || stop)
+      {
+        observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
+        next_snap_ += snap_interval;
+      }
+      if (n_steps_ % 20 == 0 || stop)
+        observer.progress(n_steps_, time_, std::min(1.0, time_ / t_plan));
+      if (stop)
+        break;
+
+      // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
+      checkpoint_or_stop(observer, prm_.output, n_steps_, time_, last_checkpoint,
+                         [this](StateArrays &state) { save_state(state); });
+    }
+
+    // ---- what the laboratory reads off the curves
+    Summary s;
+    s.test         = prm_.test;
+    s.n_particles  = body_->n_particles();
+    s.n_steps      = n_steps_;
+    s.true_area    = true_area_;
+    s.lattice_area = lattice_area_;
+    s.strain_rate  = plan_.strain_rate;
+    s.time_step    = dt_;
+    s.stop_reason  = stop_reason;
+    std::vector<double> stress, strain, gauge, radial;
+    for (const auto &r : rows)
+    {
+      // the axial phase only (CTCS: after the confinement ramp)
+      if (r.time <= plan_.confinement_time)
+        continue;
+      stress.push_back(r.stress);
+      strain.push_back(r.strain);
+      gauge.push_back(r.axial_gauge_strain);
+      radial.push_back(r.radial_strain);
+    }
+    if (!stress.empty())
+    {
+      const std::size_t k = peak_index(stress);
+      s.peak_stress       = stress[k];
+      s.strain_at_peak    = strain[k];
+      double f_peak       = 0;
+      for (const auto &r : rows)
+        f_peak = std::max(f_peak, 0.5 * (r.force + r.force_bottom));
+      s.peak_force = f_peak;
+      if (!bts_)
+      {
+        // deviatoric stress for the moduli: CTCS loads from the hydrostatic state
+        std::vector<double> dev(stress);
+        const double p = ctcs_ ? prm_.confining_pressure : 0.0;
+        std::vector<double> g0(gauge), r0(radial);
+        for (std::size_t i = 0; i < dev.size(); ++i)
+        {
+          dev[i] -= p;
+          g0[i] -= gauge.front();
+          r0[i] -= radial.front();
+        }
+        s.youngs_modulus = secant_modulus(g0, dev);
+        // the gauge strain is compression +, the radial one extension +: nu = -d(lat)/d(ax)
+        // with both extension +
+        std::vector<double> ax(g0);
+        for (double &e : ax)
+          e = -e;
+        s.poissons_ratio = secant_poissons_ratio(ax, r0, dev);
+        s.platen_modulus = secant_modulus(strain, dev);
+      }
+      else
+        s.platen_modulus = secant_modulus(strain, stress);
+    }
+    // judged over the loading up to the peak, where the measurement is made: after it the
+    // failure releases stored energy dynamically, as in a laboratory test
+    double max_ratio = 0, max_imbalance = 0;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+    {
+      const HistoryRow &r = rows[k];
+      if (r.time <= plan_.confinement_time || s.peak_force <= 0)
+        continue;
+      if (r.strain > s.strain_at_peak)
+        break;
+      const double load = 0.5 * (r.force + r.force_bottom);
+      // judged once the specimen carries a tenth of its peak: before that both energies are tiny
+      if (load < 0.1 * s.peak_force)
+        continue;
+      // the rock's own energies, and of its kinetic energy only the part that is not a
+      // homogeneous deformation: a specimen loaded at a constant rate moves affinely (at 10 %
+      // of the peak that motion alone holds 1.5 % of the elastic energy at the derived rate);
+      // the platens' motion is the frame's
+      if (rock_internal_[k] > 0)
+        max_ratio = std::max(max_ratio, rock_kinetic_[k] / rock_internal_[k]);
+      max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
+    }
+    s.max_kinetic_to_internal_energy = max_ratio;
+    s.max_force_imbalance            = max_imbalance;
+    s.max_exchange_imbalance         = max_exchange_imbalance_;
+    // the penalty stiffness per particle before the loaded-face factors, for the series checks
+    s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
+    // the SPH pairs (fixed in total Lagrangian; at the end in updated Lagrangian): with n_steps
+    // and wall_seconds the pair interactions per second (tools/bench)
+    s.extra.push_back({"n_sph_pairs", static_cast<double>(body_->n_pairs())});
+    s.max_displacement               = 0;
+    for (const auto &r : rows)
+      s.max_displacement = std::max(s.max_displacement, r.displacement);
+    if (!rows.empty())
+    {
+      const auto &r       = rows.back();
+      const double stored = r.kinetic_energy + r.internal_energy + r.dissipated_energy;
+      s.energy_balance_error =
+        r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
+    }
+    failure_->report(*body_, s);
+    s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
+                     max_imbalance <= prm_.loading.max_force_imbalance;
+    s.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return s;
+  }
+
+  Summary run_case(const CaseParameters &parameters, RunObserver &observer,
+                   const StateArrays *resume)
+  {
+    if (parameters.test == "indentation" || parameters.test == "linear-cutting")
+      return run_cutting_case(parameters, observer, resume);
+    const ThreadLimit threads(parameters.sph.n_threads);
+    SpecimenDriver      test(parameters);
+    return test.run(observer, resume);
+  }
+} // namespace coupling

@@ -1,0 +1,120 @@
+#pragma once
+/// @file
+/// The coupled laboratory test: an SPH rock specimen between two platens (FEM, rigid or elastic),
+/// penalty contact with friction, a loading path, and the measurements a laboratory makes.
+/// Internal to the coupling library; run_case() is the public entry.
+
+#include <coupling/case_parameters.h>
+#include <coupling/contact.h>
+#include <coupling/run_output.h>
+
+#include <sph/parameters.h>
+
+#include <memory>
+#include <vector>
+
+namespace sph
+{
+  template <int dim>
+  class Body;
+}
+namespace fem
+{
+  class Platen;
+}
+
+namespace coupling
+{
+  class FailureWatch;
+
+  /// Quantities derived from the case before the run: the loading path and the stop criteria.
+  struct LoadingPlan
+  {
+    double reference_length        = 0; ///< specimen length (UCS/CTCS) or diameter (BTS) [m]
+    double transit_time            = 0; ///< reference_length / sqrt(E/rho) [s]
+    double expected_failure_strain = 0; ///< from the strength model, for the rate [-]
+    double strain_rate             = 0; ///< nominal axial strain rate [1/s]
+    double platen_speed            = 0; ///< final speed of the top platen [m/s]
+    double ramp_time               = 0; ///< smooth velocity ramp [s]
+    double confinement_time        = 0; ///< CTCS: pressure ramp before axial loading [s]
+    double planned_strain          = 0; ///< strain at which the planned path ends [-]
+  };
+
+  /// The SPH material and numerics of a case (throws InputError for unknown names).
+  sph::MaterialParameters sph_material(const RockParameters &rock);
+  sph::Parameters sph_numerics(const SphParameters &sph);
+
+  /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
+  double model_ucs(const RockParameters &rock);
+  double model_tensile_strength(const RockParameters &rock);
+
+  /// The loading plan of a case (rate derived from the wave transit time unless given).
+  LoadingPlan make_loading_plan(const CaseParameters &p);
+
+  class SpecimenDriver
+  {
+  public:
+    explicit SpecimenDriver(const CaseParameters &parameters);
+    ~SpecimenDriver();
+    /// Runs to the stop criterion; with `resume`, first restores that state (see run_case).
+    Summary run(RunObserver &observer, const StateArrays *resume = nullptr);
+    /// The full state after the current step (body, platens, contacts, driver, history so far).
+    void save_state(StateArrays &out) const;
+    /// Restores save_state's arrays; InputError when they belong to another case.
+    void load_state(const StateArrays &in);
+
+  private:
+    void build_specimen();
+    void build_platens();
+    void choose_time_step();
+    void select_gauges();
+    double top_velocity(double t) const;
+    void step();
+    double exchange_imbalance() const;
+    HistoryRow measure() const;
+    /// Every step: non-finite values, particles leaving the domain, kinetic energy past its
+    /// bound, a collapsing stable time step. On failure reports the last good state to `observer`
+    /// and throws InstabilityError; otherwise keeps the current state as the last good one.
+    void check_stability(RunObserver &observer);
+    ParticleSnapshot particle_snapshot() const;
+    std::vector<MeshSnapshot> mesh_snapshots() const;
+
+    CaseParameters prm_;
+    LoadingPlan plan_;
+    bool bts_ = false, ctcs_ = false;
+    std::unique_ptr<sph::Body<3>> body_;
+    std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
+    std::unique_ptr<fem::Platen> top_, bottom_;
+    std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
+    double true_area_ = 0, lattice_area_ = 0;
+    /// Half the lattice cell along the loading axis z [m]: where an outer particle's surface is,
+    /// and so the platens' contact radius (the cylinder's layers are L / round(L / dx) apart).
+    double contact_radius_ = 0;
+    double dt_           = 0;
+    int n_substeps_      = 1;
+    double time_         = 0;
+    std::size_t n_steps_ = 0;
+    double frame_work_ = 0, pressure_work_ = 0;
+    double max_exchange_imbalance_ = 0; ///< see Summary::max_exchange_imbalance
+    double domain_size_ = 0;
+    // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
+    std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
+    double gauge_length0_ = 0;
+    std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
+    // run-loop state, members so that a checkpoint holds them
+    std::vector<HistoryRow> rows_;
+    // per history row: the rock's non-affine kinetic energy and its elastic energy [J], for the
+    // quasi-static check (see non_affine_kinetic_energy)
+    std::vector<double> rock_kinetic_, rock_internal_;
+    double next_row_ = 0, next_snap_ = 0, peak_force_ = 0;
+    bool armed_ = false;
+    bool touching_ = false;      // both platens have touched the specimen
+    double touch_strain_ = 0;    // nominal strain at that moment
+    // stability checks: dt_ = stable step * time_step_scale_ (TSSFAC above 1: the body is built
+    // with TSSFAC 1 and the driver scales its step, so that an unstable step can be injected)
+    double time_step_scale_ = 1, energy_floor_ = 0;
+    ParticleSnapshot last_good_;
+    std::size_t last_good_step_ = 0;
+    double last_good_time_ = 0;
+  };
+} // namespace coupling

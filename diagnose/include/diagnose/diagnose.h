@@ -1,0 +1,139 @@
+#pragma once
+/// @file
+/// `cosim diagnose`: the discrepancy study on measured data (design.md, "Measured data").
+/// Readers of the data folder, the material-point surrogate with its candidate extensions, the
+/// TAO fit, the evidence (BIC, held-out error) and the outputs. Units inside: MPa, mm, kN, s;
+/// stresses compression-positive as the data files write them (the rock models in sph/ are
+/// tension-positive; the surrogate converts where it calls them).
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace diagnose
+{
+  /// One row of material.csv: what was measured for a group (empty cells: not measured).
+  struct MaterialRow
+  {
+    std::string group;
+    std::optional<double> E_GPa, nu, density, UCS_MPa, BTS_MPa, c_MPa, phi_deg;
+  };
+
+  /// One row of strength.csv: a specimen at failure, compression-positive principal stresses.
+  struct StrengthRow
+  {
+    std::string test; ///< UCS, BTS, CTCS or TXE
+    std::string group;
+    double sigma1 = 0; ///< [MPa]
+    double sigma3 = 0; ///< [MPa]; BTS: -BTS
+    std::string where; ///< "file:line"
+  };
+
+  /// One curves/*.csv file: a load-frame record. `force` is the axial force the frame adds to the
+  /// confinement (deviatoric load; UCS: the whole load).
+  struct Curve
+  {
+    std::string file;
+    std::string test; ///< UCS, CTCS or BTS
+    std::string group;
+    double diameter          = 0;    ///< [mm]
+    double length            = 0;    ///< UCS/CTCS length or BTS thickness [mm]
+    double confining         = 0;    ///< [MPa]
+    bool platen_displacement = true; ///< displacement read at the platen (else on the specimen)
+    std::vector<double> time, displacement, force; ///< [s], [mm], [kN]
+  };
+
+  /// A measured-data folder (any subset of the three kinds).
+  struct Data
+  {
+    std::vector<MaterialRow> materials;
+    std::vector<StrengthRow> strengths;
+    std::vector<Curve> curves;
+  };
+
+  /// Reads DATA_DIR (material.csv, strength.csv, curves/*.csv). Throws InputError naming the file
+  /// and line of the first bad row; throws when the folder holds none of the three.
+  Data read_data(const std::string &folder);
+
+  /// The fixed effect names (design.md), `none` excluded.
+  const std::vector<std::string> &effect_names();
+
+  /// Options of one study.
+  struct Options
+  {
+    double bic_threshold   = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
+    double coupled_spacing = 0;  ///< > 0: check baseline/extended with run_case at this dx [m]
+  };
+
+  /// A fitted parameter with its standard error (from the Jacobian at the optimum).
+  struct FittedValue
+  {
+    std::string name, unit;
+    double value = 0, standard_error = 0;
+  };
+
+  /// One candidate's evidence.
+  struct Candidate
+  {
+    std::string name;
+    bool applicable = true; ///< false when the data cannot inform it (reason says why)
+    std::string reason;
+    std::vector<FittedValue> parameters;
+    double delta_bic          = 0; ///< BIC(baseline refit) - BIC(candidate); > 0 favours it
+    double delta_bic_baseline = 0; ///< BIC(baseline) - BIC(candidate)
+    double error_before       = 0; ///< baseline RMS normalised error on all data [-]
+    double error_after        = 0; ///< this candidate's [-]
+    double heldout_before = 0, heldout_after = 0; ///< leave-one-out RMS normalised error [-]
+  };
+
+  /// Error summary of a model: RMS of residuals in their own units and normalised.
+  struct ModelError
+  {
+    std::string model;
+    double fit = 0, heldout = 0; ///< RMS normalised residual [-]
+    double strength_rms_MPa = 0, heldout_strength_rms_MPa = 0;
+    double curve_rms_mm = 0, heldout_curve_rms_mm = 0;
+    /// Held-out RMS error on the discrepancy: the test conditions the baseline misses by more than
+    /// 3 SDs of their replicate mean, in those SDs (leave-one-specimen-out predictions) [-]
+    double discrepancy = 0;
+    std::map<std::string, double> coupled; ///< coupled-simulator errors, when run
+  };
+
+  /// The study's result.
+  struct Diagnosis
+  {
+    std::vector<std::string> identified;
+    /// Effects whose own Delta BIC comes within Options::bic_threshold of a named one's: the data
+    /// cannot tell them apart from it (a competing explanation, not named).
+    std::vector<std::string> indistinguishable;
+    std::vector<Candidate> candidates;
+    ModelError baseline, extended;
+    double gain = 1, heldout_gain = 1;
+    /// Baseline / extended held-out error on the discrepancy (ModelError::discrepancy): the gain
+    /// where the baseline is wrong, undiluted by the data both models fit to the noise [-]
+    double discrepancy_gain = 1;
+    int n_discrepancy       = 0; ///< test conditions (or curve points) in the discrepancy
+    /// Coupled-simulator strength RMS, baseline / extended (ModelError::coupled), when run [-]
+    double coupled_gain = 1;
+    std::vector<FittedValue> extended_parameters;
+    std::map<std::string, double> noise; ///< per data kind, what it came from in notes
+    std::vector<std::string> notes;
+    int n_strength = 0, n_curve_points = 0;
+    std::string envelope_table; ///< CSV: group,sigma3_MPa,baseline_sigma1_MPa,extended_sigma1_MPa
+    std::string
+      points_table; ///< CSV: kind,source,group,test,sigma3_MPa,force_kN,measured,baseline,extended
+  };
+
+  /// Runs the study.
+  Diagnosis diagnose(const Data &data, const Options &options);
+
+  /// diagnosis.json text.
+  std::string diagnosis_json(const Diagnosis &d);
+
+  /// Writes diagnosis.json, report.md, envelope.csv and points.csv into `out` (created). `data_dir`
+  /// is named in the report. std::runtime_error when a file cannot be written.
+  void write_report(const std::filesystem::path &out, const Diagnosis &d, const std::string &data_dir);
+} // namespace diagnose

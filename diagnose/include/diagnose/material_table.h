@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// Rock material groups (M1..M10 of the reference study) read from a data folder holding
+/// table3_fitted_parameters.csv (E, nu, measured c and phi where known, UCS, BTS) and
+/// table4_calibrated.csv (c and phi back-calculated from UCS and BTS). Units here are SI.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace diagnose
+{
+  /// One material group.
+  struct MaterialGroup
+  {
+    std::string group;                             ///< e.g. "M1"
+    std::string source;                            ///< "file:line" of its Table 3 row
+    double youngs_modulus = 0;                     ///< [Pa]
+    double poissons_ratio = 0;                     ///< [-]
+    double ucs = 0;                                ///< fitted uniaxial compressive strength [Pa]
+    double bts = 0;                                ///< fitted Brazilian tensile strength [Pa]
+    std::optional<double> measured_cohesion;       ///< from CTCS (Table 3) [Pa]
+    std::optional<double> measured_friction_angle; ///< from CTCS (Table 3) [deg]
+    std::optional<double> calibrated_cohesion;     ///< Table 4 [Pa]
+    std::optional<double> calibrated_friction_angle; ///< Table 4 [deg]
+  };
+
+  /// The groups of one data folder.
+  class MaterialTable
+  {
+  public:
+    /// Reads `directory`/table3_fitted_parameters.csv and, if present,
+    /// `directory`/table4_calibrated.csv; checks every row. Throws InputError with file:line.
+    static MaterialTable read(const std::string &directory);
+
+    /// The group named `name`; InputError listing the known groups when there is none.
+    const MaterialGroup &find(const std::string &name) const;
+    /// Nullptr when there is no such group.
+    const MaterialGroup *lookup(const std::string &name) const;
+    /// All groups in file order.
+    const std::vector<MaterialGroup> &groups() const { return groups_; }
+    /// Names of the groups with measured c and phi, comma separated ("M8, M9, M10").
+    std::string groups_with_measured_strength() const;
+    /// Names of all groups, comma separated.
+    std::string group_names() const;
+
+  private:
+    std::vector<MaterialGroup> groups_;
+  };
+} // namespace diagnose

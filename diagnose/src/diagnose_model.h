@@ -1,0 +1,122 @@
+#pragma once
+/// @file
+/// The surrogate of `cosim diagnose`: a material-point model of each measured datum (strength
+/// row, curve peak, pre-peak curve point) with the baseline and the candidate extensions, and the
+/// TAO least-squares fit of a chosen set of extensions. Internal to coupling/src.
+
+#include <coupling/case_parameters.h>
+#include <diagnose/diagnose.h>
+
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace diagnose
+{
+
+  /// A set of switched-on extensions (effect names).
+  using EffectSet = std::set<std::string>;
+
+  /// One datum the surrogate predicts.
+  struct Datum
+  {
+    enum Kind
+    {
+      strength,    ///< sigma1 at sigma3 (compressive) or -BTS (BTS) [MPa]
+      curve_point, ///< displacement at a force on a pre-peak curve [mm]
+    } kind = strength;
+    std::string test, group;
+    double sigma3       = 0;    ///< confinement [MPa] (BTS: the measured -BTS, unused)
+    double measured     = 0;    ///< sigma1 [MPa] / BTS [MPa] (positive) / displacement [mm]
+    double force        = 0;    ///< curve point: deviatoric force [kN]
+    double area         = 0;    ///< cross-section [mm^2] (BTS: D t)
+    double length       = 0;    ///< specimen length [mm] (curve points)
+    double slenderness  = 2;    ///< L/D [-] (strength rows: standard 2)
+    double volume_ratio = 1;    ///< specimen volume / a 50x100 mm cylinder's [-]
+    double strain_rate  = 0;    ///< [1/s]; 0: unknown (strength rows)
+    bool platen         = true; ///< curve displacement read at the platen
+    int source          = 0;    ///< index of the row / curve it came from
+    int condition       = 0; ///< index of its test condition (replicates share one; held-out folds)
+    std::string where;
+  };
+
+  /// A model parameter: name, unit, box, and whether the box is searched on a log scale.
+  struct Parameter
+  {
+    std::string name, unit;
+    double lo = 0, hi = 1, init = 0;
+    bool log   = true;
+    double off = 0; ///< the value at which the effect vanishes (for "at its bound" checks)
+  };
+
+  /// Per-group values the baseline takes from measurements.
+  struct GroupBase
+  {
+    std::string group;
+    double ucs = 0, phi = 0; ///< MC envelope: UCS [MPa], friction angle [deg]
+    double E = 0;            ///< Young's modulus [MPa]
+    std::string source;      ///< where they came from (report)
+  };
+
+  /// The surrogate for one effect set: parameter layout and predictions.
+  class Surrogate
+  {
+  public:
+    /// `refit`: the base strength (UCS per group, phi) is fitted; otherwise baseline values.
+    Surrogate(const std::vector<GroupBase> &groups, const EffectSet &effects, bool refit);
+
+    const std::vector<Parameter> &parameters() const { return parameters_; }
+    const EffectSet &effects() const { return effects_; }
+    /// Initial values (baseline, effects at their inits).
+    std::vector<double> initial() const;
+    /// The model's prediction of `d` with parameter values `p` [MPa or mm].
+    double predict(const Datum &d, const std::vector<double> &p) const;
+    /// Predicted sigma1 [MPa] at confinement s3 (compressive) for a standard specimen.
+    double envelope(const std::string &group, double s3, const std::vector<double> &p) const;
+    /// Predicted tensile strength [MPa] of a group.
+    double tensile_strength(const std::string &group, const std::vector<double> &p) const;
+
+  private:
+    int group_index(const std::string &g) const;
+    double value(const std::string &name, const std::vector<double> &p, double fallback) const;
+
+    std::vector<GroupBase> groups_;
+    EffectSet effects_;
+    bool refit_;
+    std::vector<Parameter> parameters_;
+  };
+
+  /// A fit result: values, standard errors and the weighted sum of squares.
+  struct FitResult
+  {
+    std::vector<double> values, standard_errors;
+    double chi2       = 0; ///< sum of (residual / noise)^2 [-]
+    int n_evaluations = 0;
+  };
+
+  /// Least squares of (predict - measured)/noise over `data` with PETSc TAO (POUNDERS, bounded),
+  /// from each start in `starts`; the best optimum is kept and, with `polish`, refined by a second
+  /// run with a fresh trust region. `noise(d)` is the standard deviation of a datum.
+  FitResult fit(const Surrogate &model, const std::vector<Datum> &data,
+                const std::function<double(const Datum &)> &noise,
+                const std::vector<std::vector<double>> &starts, bool polish = true);
+
+  /// What one coupled run gives the diagnosis.
+  struct CoupledPeak
+  {
+    double peak_MPa                = 0; ///< peak axial stress (BTS: 2P / (pi D t)) [MPa]
+    double displacement_at_peak_mm = 0; ///< platen displacement at the peak [mm]
+    std::string stop_reason;
+  };
+
+  /// One coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens, 100 mm long or 25 mm
+  /// thick) with `rock` at particle spacing `spacing` [m], stopped at `end_strain` (BTS: d / D)
+  /// or 20 % past the peak.
+  CoupledPeak coupled_peak(const std::string &test, double s3_MPa,
+                           const coupling::RockParameters &rock, double spacing, double end_strain);
+
+  /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
+  /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.
+  double closure_axial_strain(double q, double s3, double E, double r, double sigma_cc);
+} // namespace diagnose

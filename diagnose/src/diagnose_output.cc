@@ -1,0 +1,225 @@
+// The diagnosis as files: diagnosis.json, report.md and the tables the plots are drawn from.
+#include <diagnose/csv.h>
+#include <diagnose/diagnose.h>
+#include <coupling/run_case.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace diagnose
+{
+
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    std::string quote(const std::string &s)
+    {
+      std::string o = "\"";
+      for (char c : s)
+      {
+        if (c == '"' || c == '\\')
+          o += '\\';
+        o += c;
+      }
+      return o + "\"";
+    }
+
+    std::string num(const double v)
+    {
+      if (!std::isfinite(v))
+        return "null";
+      std::ostringstream o;
+      o << std::setprecision(6) << v;
+      return o.str();
+    }
+
+    std::string values_json(const std::vector<FittedValue> &v, const std::string &indent)
+    {
+      std::string o = "[";
+      for (std::size_t i = 0; i < v.size(); ++i)
+        o += (i ? ",\n" : "\n") + indent + "  {\"name\": " + quote(v[i].name) +
+             ", \"unit\": " + quote(v[i].unit) + ", \"value\": " + num(v[i].value) +
+             ", \"standard_error\": " + num(v[i].standard_error) + "}";
+      return o + (v.empty() ? "]" : "\n" + indent + "]");
+    }
+
+    std::string error_json(const ModelError &e)
+    {
+      std::string o = "{\"model\": " + quote(e.model) + ", \"error_fit\": " + num(e.fit) +
+                      ", \"error_heldout\": " + num(e.heldout) +
+                      ", \"strength_rms_MPa\": " + num(e.strength_rms_MPa) +
+                      ", \"heldout_strength_rms_MPa\": " + num(e.heldout_strength_rms_MPa) +
+                      ", \"curve_rms_mm\": " + num(e.curve_rms_mm) +
+                      ", \"heldout_curve_rms_mm\": " + num(e.heldout_curve_rms_mm) +
+                      ", \"heldout_discrepancy\": " + num(e.discrepancy);
+      for (const auto &[k, v] : e.coupled)
+        o += ", " + quote("coupled_" + k) + ": " + num(v);
+      return o + "}";
+    }
+
+    std::string fmt(double v, int p = 3)
+    {
+      std::ostringstream o;
+      o << std::setprecision(p) << v;
+      return o.str();
+    }
+
+    std::string report_md(const Diagnosis &d, const std::string &data_dir)
+    {
+      std::ostringstream r;
+      std::string ids;
+      for (const auto &i : d.identified)
+        ids += (ids.empty() ? "" : ", ") + i;
+      r << "# cosim diagnose\n\nData: `" << data_dir << "` (" << d.n_strength
+        << " strengths incl. curve peaks, " << d.n_curve_points << " pre-peak curve points).\n\n";
+      r << "## Named cause: " << ids << "\n\n";
+      for (const auto &i : d.indistinguishable)
+        r << "Competing explanation the data cannot tell apart from it: `" << i
+          << "` (see the candidates table).\n\n";
+      if (d.identified.front() == "none")
+        r << "No extension earns its parameters: the baseline explains the data within their "
+             "noise.\n\n";
+      else
+      {
+        r << "Evidence (Delta BIC against the best model without the effect, > 10 = very strong; "
+             "held-out = leave one specimen out):\n\n";
+        for (const auto &c : d.candidates)
+          for (const auto &i : d.identified)
+            if (c.name == i)
+              r << "- `" << i << "`: Delta BIC " << fmt(c.delta_bic, 4) << " on its own; error "
+                << fmt(c.error_before) << " -> " << fmt(c.error_after) << " (fit), "
+                << fmt(c.heldout_before) << " -> " << fmt(c.heldout_after) << " (held-out).\n";
+        r << "\nFitted values of the extended model (" << d.extended.model
+          << "), +- one standard error:\n\n"
+          << "| parameter | value | standard error | unit |\n|---|---|---|---|\n";
+        for (const auto &v : d.extended_parameters)
+          r << "| " << v.name << " | " << fmt(v.value, 5) << " | " << fmt(v.standard_error, 3)
+            << " | " << v.unit << " |\n";
+        r << "\n";
+      }
+      r << "## Gain\n\n| model | error (fit) | error (held-out) | strength RMS fit / held-out "
+           "[MPa] | curve RMS "
+           "fit / held-out [mm] |\n|---|---|---|---|---|\n";
+      for (const auto *e : {&d.baseline, &d.extended})
+        r << "| " << e->model << " | " << fmt(e->fit) << " | " << fmt(e->heldout) << " | "
+          << fmt(e->strength_rms_MPa) << " / " << fmt(e->heldout_strength_rms_MPa) << " | "
+          << fmt(e->curve_rms_mm) << " / " << fmt(e->heldout_curve_rms_mm) << " |\n";
+      r << "\nGain (baseline error / extended error): " << fmt(d.gain) << " on the fitted data, "
+        << fmt(d.heldout_gain)
+        << " on held-out specimens. Errors are RMS residuals divided by the data noise.\n"
+        << "\nWhere the baseline is wrong (" << d.n_discrepancy
+        << " test conditions or curve points it misses by more than 3 SDs of their replicate "
+           "mean): held-out error "
+        << fmt(d.baseline.discrepancy) << " -> " << fmt(d.extended.discrepancy) << " SDs, gain "
+        << fmt(d.discrepancy_gain)
+        << " (the all-data gain above is diluted by the data both models fit to the noise).\n";
+      if (!d.baseline.coupled.empty())
+      {
+        r << "\nCoupled simulator (run_case, coarse spacing) on every strength condition of one "
+             "group: strength RMS "
+          << fmt(d.baseline.coupled.at("strength_rms_MPa")) << " -> "
+          << fmt(d.extended.coupled.at("strength_rms_MPa")) << " MPa, coupled gain "
+          << fmt(d.coupled_gain) << " (the surrogate on the same conditions: "
+          << fmt(d.baseline.coupled.at("surrogate_strength_rms_MPa")) << " -> "
+          << fmt(d.extended.coupled.at("surrogate_strength_rms_MPa"))
+          << " MPa). Peaks against the measured:\n\n"
+             "| quantity | baseline | extended |\n|---|---|---|\n";
+        for (const auto &[k, v] : d.baseline.coupled)
+          r << "| " << k << " | " << fmt(v, 4) << " | "
+            << (d.extended.coupled.count(k) ? fmt(d.extended.coupled.at(k), 4) : "-") << " |\n";
+      }
+      r << "\n## Candidates\n\n| effect | applicable | Delta BIC | Delta BIC vs baseline | error "
+           "fit before -> after | "
+           "held-out before -> after | parameters | note |\n|---|---|---|---|---|---|---|---|\n";
+      for (const auto &c : d.candidates)
+      {
+        std::string prm;
+        for (const auto &v : c.parameters)
+          if (v.name.rfind("UCS_", 0) != 0 && v.name.rfind("T0_", 0) != 0)
+            prm += (prm.empty() ? "" : "; ") + v.name + " = " + fmt(v.value, 4) + " +- " +
+                   fmt(v.standard_error, 2);
+        if (!c.applicable)
+          r << "| " << c.name << " | no | | | | | | " << c.reason << " |\n";
+        else
+          r << "| " << c.name << " | yes | " << fmt(c.delta_bic, 4) << " | "
+            << fmt(c.delta_bic_baseline, 4) << " | " << fmt(c.error_before) << " -> "
+            << fmt(c.error_after) << " | " << fmt(c.heldout_before) << " -> "
+            << fmt(c.heldout_after) << " | " << prm << " | " << c.reason << " |\n";
+      }
+      r << "\n## Notes\n\n";
+      for (const auto &n : d.notes)
+        r << "- " << n << "\n";
+      r << "\nPlots: `envelope.png` (strength envelope: baseline, extended, data), `curves.png` "
+           "(measured "
+           "and modelled pre-peak curves, where there are curves).\n";
+      return r.str();
+    }
+
+    void write(const fs::path &p, const std::string &text)
+    {
+      std::ofstream o(p);
+      o << text;
+      if (!o)
+        throw std::runtime_error("cannot write " + p.string());
+    }
+  } // namespace
+
+  std::string diagnosis_json(const Diagnosis &d)
+  {
+    std::ostringstream o;
+    o << "{\n  \"identified\": [";
+    for (std::size_t i = 0; i < d.identified.size(); ++i)
+      o << (i ? ", " : "") << quote(d.identified[i]);
+    o << "],\n  \"indistinguishable\": [";
+    for (std::size_t i = 0; i < d.indistinguishable.size(); ++i)
+      o << (i ? ", " : "") << quote(d.indistinguishable[i]);
+    o << "],\n  \"candidates\": [";
+    for (std::size_t i = 0; i < d.candidates.size(); ++i)
+    {
+      const auto &c = d.candidates[i];
+      o << (i ? "," : "") << "\n    {\"name\": " << quote(c.name)
+        << ", \"applicable\": " << (c.applicable ? "true" : "false")
+        << ", \"note\": " << quote(c.reason)
+        << ",\n     \"evidence\": {\"delta_bic\": " << num(c.delta_bic)
+        << ", \"delta_bic_vs_baseline\": " << num(c.delta_bic_baseline)
+        << "},\n     \"parameters\": " << values_json(c.parameters, "     ")
+        << ",\n     \"error_before\": " << num(c.error_before)
+        << ", \"error_after\": " << num(c.error_after)
+        << ", \"heldout_error_before\": " << num(c.heldout_before)
+        << ", \"heldout_error_after\": " << num(c.heldout_after) << "}";
+    }
+    o << "\n  ],\n  \"baseline\": " << error_json(d.baseline)
+      << ",\n  \"extended\": " << error_json(d.extended)
+      << ",\n  \"extended_parameters\": " << values_json(d.extended_parameters, "  ")
+      << ",\n  \"gain\": " << num(d.gain) << ",\n  \"heldout_gain\": " << num(d.heldout_gain)
+      << ",\n  \"discrepancy_gain\": " << num(d.discrepancy_gain)
+      << ",\n  \"n_discrepancy\": " << d.n_discrepancy
+      << ",\n  \"coupled_gain\": " << num(d.coupled_gain) << ",\n  \"noise\": {";
+    bool first = true;
+    for (const auto &[k, v] : d.noise)
+    {
+      o << (first ? "" : ", ") << quote(k) << ": " << num(v);
+      first = false;
+    }
+    o << "},\n  \"notes\": [";
+    for (std::size_t i = 0; i < d.notes.size(); ++i)
+      o << (i ? ",\n    " : "\n    ") << quote(d.notes[i]);
+    o << "\n  ]\n}\n";
+    return o.str();
+  }
+
+  void write_report(const std::filesystem::path &out, const Diagnosis &d, const std::string &data_dir)
+  {
+    fs::create_directories(out);
+    write(out / "diagnosis.json", diagnosis_json(d));
+    write(out / "report.md", report_md(d, data_dir));
+    write(out / "envelope.csv", d.envelope_table);
+    write(out / "points.csv", d.points_table);
+  }
+} // namespace diagnose

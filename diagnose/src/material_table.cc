@@ -1,0 +1,119 @@
+#include <diagnose/csv.h>
+#include <diagnose/material_table.h>
+#include <coupling/run_case.h>
+
+#include <filesystem>
+
+namespace diagnose
+{
+  using coupling::InputError;
+
+  namespace
+  {
+    void check(bool ok, const CsvTable &t, std::size_t row, const std::string &what)
+    {
+      if (!ok)
+        throw InputError(t.where(row) + ": " + what);
+    }
+  } // namespace
+
+  MaterialTable MaterialTable::read(const std::string &directory)
+  {
+    namespace fs = std::filesystem;
+    if (!fs::is_directory(directory))
+      throw InputError(directory + ": no such data folder; Rock/Data directory must name a folder "
+                                   "with table3_fitted_parameters.csv (default cases/data)");
+    MaterialTable table;
+    const CsvTable t3 = CsvTable::read(directory + "/table3_fitted_parameters.csv");
+    t3.require_columns({"group", "E_GPa", "nu", "c_MPa", "phi_deg", "UCS_MPa", "BTS_MPa"});
+    for (std::size_t r = 0; r < t3.n_rows(); ++r)
+    {
+      MaterialGroup g;
+      g.group = t3.text(r, "group");
+      g.source = t3.where(r);
+      check(!g.group.empty(), t3, r, "empty group name; every row needs one (e.g. M1)");
+      check(table.lookup(g.group) == nullptr, t3, r, "group " + g.group + " appears twice; group names must be unique");
+      const double e = t3.number(r, "E_GPa");
+      check(e > 0, t3, r, "E_GPa = " + t3.text(r, "E_GPa") + " must be > 0");
+      g.youngs_modulus = e * 1e9;
+      g.poissons_ratio = t3.number(r, "nu");
+      check(g.poissons_ratio >= 0 && g.poissons_ratio < 0.5, t3, r,
+            "nu = " + t3.text(r, "nu") + " must be in [0, 0.5)");
+      const double ucs = t3.number(r, "UCS_MPa"), bts = t3.number(r, "BTS_MPa");
+      check(bts > 0 && ucs > bts, t3, r,
+            "UCS_MPa = " + t3.text(r, "UCS_MPa") + ", BTS_MPa = " + t3.text(r, "BTS_MPa") +
+              ": need 0 < BTS < UCS");
+      g.ucs = ucs * 1e6;
+      g.bts = bts * 1e6;
+      const auto c = t3.optional_number(r, "c_MPa");
+      const auto phi = t3.optional_number(r, "phi_deg");
+      check(c.has_value() == phi.has_value(), t3, r, "give both c_MPa and phi_deg or leave both empty");
+      if (c)
+      {
+        check(*c > 0, t3, r, "c_MPa = " + t3.text(r, "c_MPa") + " must be > 0");
+        check(*phi > 0 && *phi < 90, t3, r, "phi_deg = " + t3.text(r, "phi_deg") + " must be in (0, 90)");
+        g.measured_cohesion = *c * 1e6;
+        g.measured_friction_angle = *phi;
+      }
+      table.groups_.push_back(g);
+    }
+    if (table.groups_.empty())
+      throw InputError(t3.file() + ": no data rows; expected one row per material group");
+
+    const std::string t4_path = directory + "/table4_calibrated.csv";
+    if (fs::exists(t4_path))
+    {
+      const CsvTable t4 = CsvTable::read(t4_path);
+      t4.require_columns({"group", "c_MPa", "phi_deg"});
+      for (std::size_t r = 0; r < t4.n_rows(); ++r)
+      {
+        const std::string name = t4.text(r, "group");
+        MaterialGroup *g = nullptr;
+        for (auto &candidate : table.groups_)
+          if (candidate.group == name)
+            g = &candidate;
+        check(g != nullptr, t4, r, "group '" + name + "' is not in table3_fitted_parameters.csv (" +
+                                     table.group_names() + ")");
+        check(!g->calibrated_cohesion, t4, r, "group " + name + " appears twice");
+        const double c = t4.number(r, "c_MPa"), phi = t4.number(r, "phi_deg");
+        check(c > 0, t4, r, "c_MPa = " + t4.text(r, "c_MPa") + " must be > 0");
+        check(phi > 0 && phi < 90, t4, r, "phi_deg = " + t4.text(r, "phi_deg") + " must be in (0, 90)");
+        g->calibrated_cohesion = c * 1e6;
+        g->calibrated_friction_angle = phi;
+      }
+    }
+    return table;
+  }
+
+  const MaterialGroup *MaterialTable::lookup(const std::string &name) const
+  {
+    for (const auto &g : groups_)
+      if (g.group == name)
+        return &g;
+    return nullptr;
+  }
+
+  const MaterialGroup &MaterialTable::find(const std::string &name) const
+  {
+    if (const auto *g = lookup(name))
+      return *g;
+    throw InputError("unknown rock group '" + name + "'; known groups: " + group_names());
+  }
+
+  std::string MaterialTable::group_names() const
+  {
+    std::string out;
+    for (const auto &g : groups_)
+      out += (out.empty() ? "" : ", ") + g.group;
+    return out;
+  }
+
+  std::string MaterialTable::groups_with_measured_strength() const
+  {
+    std::string out;
+    for (const auto &g : groups_)
+      if (g.measured_cohesion)
+        out += (out.empty() ? "" : ", ") + g.group;
+    return out.empty() ? "none" : out;
+  }
+} // namespace diagnose
