@@ -5,7 +5,7 @@
 
 #include <coupling/run_case.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/lattice.h>
 
@@ -167,8 +167,8 @@ namespace coupling
     // cutters are small: one particle spacing resolves the tip profile
     fem::Parameters fp = fem_parameters(prm_.platens, dx);
 
-    fem::PlatenGeometry g;
-    g.side           = fem::PlatenSide::above;
+    fem::BodyGeometry g;
+    g.side           = fem::BodySide::above;
     g.contact_z      = 0.0;
     g.thickness      = prm_.platens.thickness;
     g.tip_half_angle = 0.5 * c.tip_angle * pi / 180.0;
@@ -176,27 +176,27 @@ namespace coupling
     double rim_rise  = 0;
     if (c.shape == "wedge")
     {
-      g.shape  = fem::PlatenShape::wedge;
+      g.shape  = fem::BodyShape::wedge;
       g.size_x = c.indenter_width;
       g.size_y = c.wedge_length;
       rim_rise = 0.5 * g.size_x / std::tan(g.tip_half_angle);
     }
     else if (c.shape == "cone")
     {
-      g.shape    = fem::PlatenShape::cone;
+      g.shape    = fem::BodyShape::cone;
       g.diameter = c.indenter_width;
       rim_rise   = 0.5 * g.diameter / std::tan(g.tip_half_angle);
     }
     else if (c.shape == "flat")
     {
-      g.shape    = fem::PlatenShape::cylinder;
+      g.shape    = fem::BodyShape::cylinder;
       g.diameter = c.indenter_width;
     }
     else
     {
       // the rim segment of the disc: its chord reaches past the contact arc sqrt(2 R p) by a
       // fifth and a particle spacing, so the rock never meets the segment's ends
-      g.shape         = fem::PlatenShape::disc_cutter;
+      g.shape         = fem::BodyShape::disc_cutter;
       g.cutter_radius = 0.5 * c.disc_diameter;
       g.size_y        = c.tip_width;
       const double R  = g.cutter_radius;
@@ -253,7 +253,7 @@ namespace coupling
     fp.loaded_face_lateral = fem::LoadedFaceLateral::fixed;
     try
     {
-      cutter_ = std::make_unique<fem::Platen>(g, fp);
+      cutter_ = std::make_unique<fem::SteelBody>(g, fp);
     }
     catch (const std::invalid_argument &e)
     {

@@ -27,7 +27,7 @@ namespace sph
 }
 namespace fem
 {
-  class Platen;
+  class SteelBody;
 }
 
 namespace coupling
@@ -102,7 +102,7 @@ namespace coupling
     CaseParameters prm_;
     bool cutting_ = false;
     std::unique_ptr<sph::Body<3>> body_;
-    std::unique_ptr<fem::Platen> cutter_;
+    std::unique_ptr<fem::SteelBody> cutter_;
     std::unique_ptr<PenaltyContact> contact_;
     std::vector<double> volume0_; ///< initial particle volumes [m^3]
     std::size_t n_fixed_ = 0;

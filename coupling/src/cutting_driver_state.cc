@@ -10,7 +10,7 @@
 
 #include <coupling/run_case.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/body.h>
 
 #include <sstream>

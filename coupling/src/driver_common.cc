@@ -2,7 +2,7 @@
 
 #include <coupling/run_case.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/strength_scatter.h>
 
@@ -56,9 +56,9 @@ namespace coupling
   {
     fem::Parameters fp;
     if (platens.model == "rigid")
-      fp.model = fem::PlatenModel::rigid;
+      fp.model = fem::SteelModel::rigid;
     else if (platens.model == "elastic")
-      fp.model = fem::PlatenModel::elastic;
+      fp.model = fem::SteelModel::elastic;
     else
       throw InputError("Platens/Model: unknown model '" + platens.model + "'; accepted: rigid, elastic");
     fp.youngs_modulus = platens.youngs_modulus;
@@ -103,7 +103,7 @@ namespace coupling
     return s;
   }
 
-  MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen)
+  MeshSnapshot mesh_snapshot(const std::string &name, const fem::SteelBody &platen)
   {
     const fem::MeshSnapshot f = platen.mesh_snapshot();
     MeshSnapshot m;
@@ -115,7 +115,7 @@ namespace coupling
     return m;
   }
 
-  ContactSurface contact_surface(const fem::Platen &platen)
+  ContactSurface contact_surface(const fem::SteelBody &platen)
   {
     ContactSurface s;
     s.position = platen.contact_positions();

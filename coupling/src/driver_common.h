@@ -23,7 +23,7 @@ namespace sph
 
 namespace fem
 {
-  class Platen;
+  class SteelBody;
 }
 
 namespace coupling
@@ -48,11 +48,11 @@ namespace coupling
   fem::Parameters fem_parameters(const PlatenParameters &platens, double default_element_size);
 
   /// The deformed mesh of one platen or cutter, under the given name.
-  MeshSnapshot mesh_snapshot(const std::string &name, const fem::Platen &platen);
+  MeshSnapshot mesh_snapshot(const std::string &name, const fem::SteelBody &platen);
 
   /// FEM -> SPH: the contact-face nodes of a platen or cutter as the background particles,
   /// mirrored unchanged (a rigid body's nodes with zero mass).
-  ContactSurface contact_surface(const fem::Platen &platen);
+  ContactSurface contact_surface(const fem::SteelBody &platen);
 
   /// History rows in a checkpoint: the first `width` fields of HistoryRow in declaration order
   /// (13: the laboratory tests, without the cutting forces; 15: every field).

@@ -7,7 +7,7 @@
 #include <coupling/curve_analysis.h>
 #include <coupling/run_case.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/lattice.h>
 
@@ -253,7 +253,7 @@ namespace coupling
     const double dx = prm_.sph.spacing;
     fem::Parameters fp = fem_parameters(prm_.platens, 2.0 * dx);
 
-    fem::PlatenGeometry g;
+    fem::BodyGeometry g;
     g.thickness = prm_.platens.thickness;
     if (bts_)
     {
@@ -262,11 +262,11 @@ namespace coupling
       if (prm_.platens.shape == "jaw")
       {
         // ISRM curved jaw: contact arc of 1.5 disc radii unless given
-        g.shape      = fem::PlatenShape::jaw;
+        g.shape      = fem::BodyShape::jaw;
         g.jaw_radius = prm_.platens.jaw_radius > 0 ? prm_.platens.jaw_radius : 0.75 * prm_.diameter;
       }
       else if (prm_.platens.shape == "flat")
-        g.shape = fem::PlatenShape::box;
+        g.shape = fem::BodyShape::box;
       else
         throw InputError("Platens/Shape: unknown shape '" + prm_.platens.shape +
                          "'; accepted: flat, jaw");
@@ -275,11 +275,11 @@ namespace coupling
     {
       if (prm_.platens.shape != "flat")
         throw InputError("Platens/Shape: " + prm_.test + " uses flat platens; jaw is for BTS only");
-      g.shape    = fem::PlatenShape::cylinder;
+      g.shape    = fem::BodyShape::cylinder;
       g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : prm_.diameter + 4.0 * dx;
     }
     double top_z = bts_ ? prm_.diameter : prm_.length, bottom_z = 0.0;
-    if (g.shape == fem::PlatenShape::jaw)
+    if (g.shape == fem::BodyShape::jaw)
     {
       // the concave jaw bends towards the disc away from its apex, and its mesh chords the arc
       // (the faces between nodes lie nearer the disc than the arc); the lattice's outer particles
@@ -288,12 +288,12 @@ namespace coupling
       // start with particles pressed into the jaw. The face height over x is read off a probe
       // jaw with its apex at z = 0 (piecewise linear between the node columns; the arc runs
       // along y unchanged).
-      g.side      = fem::PlatenSide::above;
+      g.side      = fem::BodySide::above;
       g.contact_z = 0.0;
       std::vector<std::pair<double, double>> profile; // (x, z) of the contact nodes, by x
       try
       {
-        const std::vector<double> xc = fem::Platen(g, fp).contact_positions();
+        const std::vector<double> xc = fem::SteelBody(g, fp).contact_positions();
         for (std::size_t k = 0; k < xc.size(); k += 3)
           profile.emplace_back(xc[k], xc[k + 2]);
       }
@@ -348,12 +348,12 @@ namespace coupling
     }
     try
     {
-      g.side      = fem::PlatenSide::above;
+      g.side      = fem::BodySide::above;
       g.contact_z = top_z;
-      top_        = std::make_unique<fem::Platen>(g, fp);
-      g.side      = fem::PlatenSide::below;
+      top_        = std::make_unique<fem::SteelBody>(g, fp);
+      g.side      = fem::BodySide::below;
       g.contact_z = bottom_z;
-      bottom_     = std::make_unique<fem::Platen>(g, fp);
+      bottom_     = std::make_unique<fem::SteelBody>(g, fp);
     }
     catch (const std::invalid_argument &e)
     {
@@ -700,10 +700,10 @@ namespace coupling
          << "in use " << dt_ << " s (|v| = " << v[i_dt].norm() << " m/s, h = " << h[i_dt] << " m)";
       fail(os.str(), i_dt, too_large);
     }
-    const std::array<const fem::Platen *, 2> platens{{top_.get(), bottom_.get()}};
+    const std::array<const fem::SteelBody *, 2> platens{{top_.get(), bottom_.get()}};
     for (int k = 0; k < 2; ++k)
     {
-      const fem::Platen &pl = *platens[k];
+      const fem::SteelBody &pl = *platens[k];
       if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
       {
         std::ostringstream os;

@@ -20,7 +20,7 @@ namespace sph
 }
 namespace fem
 {
-  class Platen;
+  class SteelBody;
 }
 
 namespace coupling
@@ -84,7 +84,7 @@ namespace coupling
     bool bts_ = false, ctcs_ = false;
     std::unique_ptr<sph::Body<3>> body_;
     std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
-    std::unique_ptr<fem::Platen> top_, bottom_;
+    std::unique_ptr<fem::SteelBody> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
     double true_area_ = 0, lattice_area_ = 0;
     /// Half the lattice cell along the loading axis z [m]: where an outer particle's surface is,

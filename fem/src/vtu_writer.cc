@@ -1,7 +1,7 @@
 /// @file
 /// VTK XML unstructured-grid writer for fem::MeshSnapshot (no deal.II: plain arrays in).
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <fstream>
 #include <iomanip>

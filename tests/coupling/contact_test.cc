@@ -4,7 +4,7 @@
 #include <coupling/contact.h>
 #include <coupling/curve_analysis.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <gtest/gtest.h>
 
@@ -354,9 +354,9 @@ TEST(ContactConvexApex, NoContactFarFromAWarpedConeMesh)
   // nothing; cases/indentation/README.md). The quads' corners lie on the cone and a convex body
   // holds its chords, so the mesh lies inside the ideal cone: a particle more than its diameter
   // 2 r clear of the ideal cone is more than 2 r from every face and must feel nothing.
-  fem::PlatenGeometry g;
-  g.shape          = fem::PlatenShape::cone;
-  g.side           = fem::PlatenSide::above;
+  fem::BodyGeometry g;
+  g.shape          = fem::BodyShape::cone;
+  g.side           = fem::BodySide::above;
   g.diameter       = 0.016;
   g.tip_half_angle = 0.25 * 3.14159265358979323846;
   g.thickness      = 0.0128;
@@ -365,9 +365,9 @@ TEST(ContactConvexApex, NoContactFarFromAWarpedConeMesh)
   const double apex = -2.04e-3;
   g.contact_z       = apex;
   fem::Parameters fp;
-  fp.model        = fem::PlatenModel::rigid;
+  fp.model        = fem::SteelModel::rigid;
   fp.element_size = 1.5e-3;
-  const fem::Platen cone(g, fp);
+  const fem::SteelBody cone(g, fp);
   const ContactSurface s = contact_surface(cone);
   ASSERT_GT(s.faces.size(), 20u);
   ContactParameters prm;

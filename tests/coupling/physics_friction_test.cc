@@ -15,22 +15,22 @@ namespace
 {
   constexpr double rock_E = 97.07e9, rock_rho = 2900.0; // basalt group M1 (Table 3)
 
-  std::unique_ptr<fem::Platen> platen_below(bool rigid)
+  std::unique_ptr<fem::SteelBody> platen_below(bool rigid)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::box;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::box;
     g.size_x    = 16e-3;
     g.size_y    = 16e-3;
     g.thickness = 4e-3;
-    g.side      = fem::PlatenSide::below; // contact face z = 0, body below
+    g.side      = fem::BodySide::below; // contact face z = 0, body below
     g.contact_z = 0.0;
     fem::Parameters p;
-    p.model          = rigid ? fem::PlatenModel::rigid : fem::PlatenModel::elastic;
+    p.model          = rigid ? fem::SteelModel::rigid : fem::SteelModel::elastic;
     p.youngs_modulus = 200e9;
     p.density        = 7850.0;
     p.poissons_ratio = 0.3;
     p.element_size   = 2e-3;
-    return std::make_unique<fem::Platen>(g, p);
+    return std::make_unique<fem::SteelBody>(g, p);
   }
 
   struct SlideResult

@@ -7,7 +7,7 @@
 #include <coupling/contact.h>
 #include <coupling/run_case.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/lattice.h>
 
 #include <gtest/gtest.h>
@@ -43,20 +43,20 @@ namespace
 
   /// The platen geometry the driver builds for a UCS case (specimen_driver.cc, build_platens):
   /// a steel disc D + 4 dx wide, elements of 2 dx; here the bottom one (both are alike).
-  fem::Platen bottom_platen(const CaseParameters &c)
+  fem::SteelBody bottom_platen(const CaseParameters &c)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::cylinder;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::cylinder;
     g.diameter  = c.diameter + 4.0 * c.sph.spacing;
     g.thickness = c.platens.thickness;
-    g.side      = fem::PlatenSide::below;
+    g.side      = fem::BodySide::below;
     g.contact_z = 0.0;
     fem::Parameters fp;
     fp.youngs_modulus = c.platens.youngs_modulus;
     fp.poissons_ratio = c.platens.poissons_ratio;
     fp.density        = c.platens.density;
     fp.element_size   = 2.0 * c.sph.spacing;
-    return fem::Platen(g, fp);
+    return fem::SteelBody(g, fp);
   }
 
   /// FEM only, no SPH: the compliance [m/N] of a platen under the rock's bottom particle layer,
@@ -64,7 +64,7 @@ namespace
   /// the same force on every particle of the layer, spread to the face nodes as the contact
   /// spreads it; then f . u / F^2 is the mean displacement under the particles per unit force.
   /// K u = f is solved statically by conjugate gradients on the platen's own stiffness.
-  double platen_compliance(const fem::Platen &platen, const std::vector<sph::Vector<3>> &layer,
+  double platen_compliance(const fem::SteelBody &platen, const std::vector<sph::Vector<3>> &layer,
                            double radius)
   {
     ContactSurface s;
@@ -178,7 +178,7 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
   for (const auto &p : lattice.positions)
     if (std::abs(p[2] - z_min) < 1e-9)
       layer.push_back(p);
-  const fem::Platen platen = bottom_platen(c);
+  const fem::SteelBody platen = bottom_platen(c);
   // k as the driver sets it (summary.json: contact_stiffness_N_per_m)
   const double k = extra(s, "contact_stiffness_N_per_m");
   ASSERT_GT(k, 0.0);

@@ -18,15 +18,15 @@ namespace
   constexpr double rock_E = 97.07e9, rock_rho = 2900.0;
   constexpr double steel_E = 200e9, steel_rho = 7850.0;
 
-  std::unique_ptr<fem::Platen> steel_box(double size_xy, double thickness, double element,
+  std::unique_ptr<fem::SteelBody> steel_box(double size_xy, double thickness, double element,
                                          double poissons_ratio, bool free_body)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::box;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::box;
     g.size_x    = size_xy;
     g.size_y    = size_xy;
     g.thickness = thickness;
-    g.side      = fem::PlatenSide::below; // contact face z = 0 on top, body below
+    g.side      = fem::BodySide::below; // contact face z = 0 on top, body below
     g.contact_z = 0.0;
     fem::Parameters p;
     p.youngs_modulus = steel_E;
@@ -34,7 +34,7 @@ namespace
     p.poissons_ratio = poissons_ratio;
     p.element_size   = element;
     p.free_body      = free_body;
-    return std::make_unique<fem::Platen>(g, p);
+    return std::make_unique<fem::SteelBody>(g, p);
   }
 
   double norm(const std::array<double, 3> &a)

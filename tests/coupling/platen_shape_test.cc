@@ -15,7 +15,7 @@ namespace
   }
 } // namespace
 
-TEST(PlatenShape, BtsDefaultsToFlatAndReadsJaws)
+TEST(BodyShape, BtsDefaultsToFlatAndReadsJaws)
 {
   using app::read_case_file;
   EXPECT_EQ(read_case_file(bts_case(), {}).parameters.platens.shape, "flat");
@@ -27,7 +27,7 @@ TEST(PlatenShape, BtsDefaultsToFlatAndReadsJaws)
   EXPECT_NEAR(r.jaw_radius, 0.04, 1e-15);
 }
 
-TEST(PlatenShape, BadShapesAreInputErrors)
+TEST(BodyShape, BadShapesAreInputErrors)
 {
   using coupling::InputError;
   using app::read_case_file;

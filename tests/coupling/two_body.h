@@ -1,5 +1,5 @@
 #pragma once
-// Test fixture: one SPH rock body and one FEM body (fem::Platen) coupled through PenaltyContact,
+// Test fixture: one SPH rock body and one FEM body (fem::SteelBody) coupled through PenaltyContact,
 // stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_driver.cc): contact
 // forces at the start of the step, SPH integrated with dt, the FEM body sub-cycled with dt/n and
 // the platen force held over the sub-steps, so that both sides receive the same impulse f dt.
@@ -7,7 +7,7 @@
 
 #include <coupling/contact.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/lattice.h>
 
@@ -35,7 +35,7 @@ namespace coupling::testing
     /// contact_scale: the penalty stiffness as a fraction of its central-difference bound at the
     /// rock's stable step for the lightest particle against the lightest contact node (rigid: the
     /// particle alone), the step shortened by coupled_time_step(), as in the driver.
-    TwoBody(std::unique_ptr<sph::Body<3>> rock, std::unique_ptr<fem::Platen> platen,
+    TwoBody(std::unique_ptr<sph::Body<3>> rock, std::unique_ptr<fem::SteelBody> platen,
             double contact_scale, double friction_static = 0, double friction_dynamic = 0)
         : rock_(std::move(rock))
         , platen_(std::move(platen))
@@ -93,7 +93,7 @@ namespace coupling::testing
     }
 
     sph::Body<3> &rock() { return *rock_; }
-    fem::Platen &platen() { return *platen_; }
+    fem::SteelBody &platen() { return *platen_; }
     const PenaltyContact &contact() const { return *contact_; }
     const std::vector<double> &force_on_rock() const { return f_rock_; }
     const std::vector<double> &force_on_platen() const { return f_platen_; }
@@ -116,7 +116,7 @@ namespace coupling::testing
 
   private:
     std::unique_ptr<sph::Body<3>> rock_;
-    std::unique_ptr<fem::Platen> platen_;
+    std::unique_ptr<fem::SteelBody> platen_;
     std::unique_ptr<PenaltyContact> contact_;
     ContactSurface surface_;
     std::vector<double> f_rock_, f_platen_;

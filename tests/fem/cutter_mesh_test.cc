@@ -1,6 +1,6 @@
 // Cutter and indenter meshes (wedge, cone, CCS disc cutter) against their closed-form volumes and
 // tip profiles, and the prescribed translation of a cutter along x with its load cell.
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ namespace
   }
 
   /// The lowest contact-node z [m] and its (x, y).
-  std::array<double, 3> lowest_node(const fem::Platen &p)
+  std::array<double, 3> lowest_node(const fem::SteelBody &p)
   {
     const auto x = p.contact_positions();
     std::array<double, 3> best{{0, 0, 1e300}};
@@ -33,15 +33,15 @@ namespace
 TEST(CutterMesh, WedgeFollowsItsFlanksAndHoldsItsVolume)
 {
   // 90-degree wedge (half-angle 45 deg), 20 mm wide, 30 mm long, tip at z = 0.01
-  fem::PlatenGeometry g;
-  g.shape          = fem::PlatenShape::wedge;
+  fem::BodyGeometry g;
+  g.shape          = fem::BodyShape::wedge;
   g.size_x         = 0.02;
   g.size_y         = 0.03;
   g.thickness      = 0.025;
   g.tip_half_angle = pi / 4;
   g.contact_z      = 0.01;
   g.center_x       = 0.005;
-  const fem::Platen wedge(g, steel(0.0025));
+  const fem::SteelBody wedge(g, steel(0.0025));
   const auto x = wedge.contact_positions();
   ASSERT_GT(x.size(), 3u * 20);
   // every contact node lies on z = z_tip + |x - x_c| / tan(alpha): placed there, round-off only
@@ -64,12 +64,12 @@ TEST(CutterMesh, WedgeFollowsItsFlanksAndHoldsItsVolume)
 TEST(CutterMesh, ConeHasItsApexOnTheAxisAndItsVolume)
 {
   // 120-degree cone (half-angle 60 deg), 16 mm diameter, tip at the origin
-  fem::PlatenGeometry g;
-  g.shape          = fem::PlatenShape::cone;
+  fem::BodyGeometry g;
+  g.shape          = fem::BodyShape::cone;
   g.diameter       = 0.016;
   g.thickness      = 0.015;
   g.tip_half_angle = pi / 3;
-  const fem::Platen cone(g, steel(0.001));
+  const fem::SteelBody cone(g, steel(0.001));
   const auto x = cone.contact_positions();
   for (std::size_t i = 0; i < x.size(); i += 3)
     EXPECT_NEAR(x[i + 2], std::hypot(x[i], x[i + 1]) / std::tan(g.tip_half_angle), 1e-12);
@@ -88,13 +88,13 @@ TEST(CutterMesh, ConeHasItsApexOnTheAxisAndItsVolume)
 TEST(CutterMesh, RoundedConeTipIsTangentToItsFlanks)
 {
   // 90-degree cone with a 3 mm tip radius: the circle up to r_t = rho cos(alpha), then the flank
-  fem::PlatenGeometry g;
-  g.shape          = fem::PlatenShape::cone;
+  fem::BodyGeometry g;
+  g.shape          = fem::BodyShape::cone;
   g.diameter       = 0.016;
   g.thickness      = 0.015;
   g.tip_half_angle = pi / 4;
   g.tip_radius     = 0.003;
-  const fem::Platen cone(g, steel(0.001));
+  const fem::SteelBody cone(g, steel(0.001));
   const double rho = g.tip_radius, a = g.tip_half_angle, r_t = rho * std::cos(a);
   const auto x         = cone.contact_positions();
   std::size_t n_on_cap = 0;
@@ -116,14 +116,14 @@ TEST(CutterMesh, RoundedConeTipIsTangentToItsFlanks)
 TEST(CutterMesh, DiscCutterRimIsItsArc)
 {
   // 17-inch CCS disc (R = 215.9 mm), tip 12.7 mm wide, a 60 mm chord of the rim
-  fem::PlatenGeometry g;
-  g.shape         = fem::PlatenShape::disc_cutter;
+  fem::BodyGeometry g;
+  g.shape         = fem::BodyShape::disc_cutter;
   g.size_x        = 0.06;
   g.size_y        = 0.0127;
   g.thickness     = 0.02;
   g.cutter_radius = 0.2159;
   g.contact_z     = 0.0;
-  const fem::Platen disc(g, steel(0.003));
+  const fem::SteelBody disc(g, steel(0.003));
   const auto x   = disc.contact_positions();
   const double R = g.cutter_radius;
   for (std::size_t i = 0; i < x.size(); i += 3)
@@ -137,20 +137,20 @@ TEST(CutterMesh, DiscCutterRimIsItsArc)
   EXPECT_NEAR(disc.mesh_volume() / V, 1.0, 1e-3);
   // too thin a body for the rim's rise is refused with a message
   g.thickness = 0.001;
-  EXPECT_THROW(fem::Platen(g, steel(0.003)), std::invalid_argument);
+  EXPECT_THROW(fem::SteelBody(g, steel(0.003)), std::invalid_argument);
 }
 
 TEST(CutterMotion, RigidCutterTranslatesAndItsLoadCellBalancesTheContactForce)
 {
-  fem::PlatenGeometry g;
-  g.shape             = fem::PlatenShape::wedge;
+  fem::BodyGeometry g;
+  g.shape             = fem::BodyShape::wedge;
   g.size_x            = 0.02;
   g.size_y            = 0.02;
   g.thickness         = 0.02;
   g.tip_half_angle    = pi / 4;
   fem::Parameters prm = steel(0.005);
-  prm.model           = fem::PlatenModel::rigid;
-  fem::Platen wedge(g, prm);
+  prm.model           = fem::SteelModel::rigid;
+  fem::SteelBody wedge(g, prm);
   const double vx = 0.5, vz = -0.1;
   wedge.set_loaded_face_velocity_x([&](double) { return vx; });
   wedge.set_loaded_face_velocity([&](double) { return vz; });

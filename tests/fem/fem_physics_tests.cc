@@ -1,7 +1,7 @@
-// Physics tests of fem::Platen against closed forms: wave speed in a thin steel bar, uniaxial
+// Physics tests of fem::SteelBody against closed forms: wave speed in a thin steel bar, uniaxial
 // compression against E eps A with the energy balance, and stability at the computed step.
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <gtest/gtest.h>
 
@@ -20,15 +20,15 @@ namespace
     return t >= t_ramp ? 1.0 : 0.5 * (1.0 - std::cos(pi * t / t_ramp));
   }
 
-  fem::PlatenGeometry box_geometry(double sx, double sy, double t)
+  fem::BodyGeometry box_geometry(double sx, double sy, double t)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::box;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::box;
     g.size_x    = sx;
     g.size_y    = sy;
     g.thickness = t;
     g.contact_z = 0.0;
-    g.side      = fem::PlatenSide::above; // contact face at z = 0, loaded face at z = t
+    g.side      = fem::BodySide::above; // contact face at z = 0, loaded face at z = t
     return g;
   }
 
@@ -62,7 +62,7 @@ TEST(FemWave, ThinBarLongitudinalSpeedIsSqrtEOverRho)
   prm.element_size        = 0.01;
   prm.loaded_face_lateral = fem::LoadedFaceLateral::free;
   const double L          = 1.0;
-  fem::Platen bar(box_geometry(0.02, 0.02, L), prm);
+  fem::SteelBody bar(box_geometry(0.02, 0.02, L), prm);
 
   const double v0 = -1.0, t_rise = 40e-6; // rise over ~20 cells: little grid dispersion
   bar.set_loaded_face_velocity([&](double t) { return v0 * ramp(t, t_rise); });
@@ -110,9 +110,9 @@ namespace
   /// z = 0. The loaded face is driven towards the wall with x, y free and the wall is
   /// frictionless: no face restrains lateral expansion, so the state is exactly uniaxial stress,
   /// sigma_zz = E eps, which trilinear elements represent exactly (A = mesh volume / thickness).
-  CompressionResult compress(fem::PlatenShape shape, fem::PlatenSide side, double damping_xi)
+  CompressionResult compress(fem::BodyShape shape, fem::BodySide side, double damping_xi)
   {
-    fem::PlatenGeometry g;
+    fem::BodyGeometry g;
     g.shape     = shape;
     g.size_x    = 0.04;
     g.size_y    = 0.03;
@@ -123,10 +123,10 @@ namespace
     fem::Parameters prm;
     prm.element_size        = 0.005;
     prm.loaded_face_lateral = fem::LoadedFaceLateral::free;
-    fem::Platen probe(g, prm);
+    fem::SteelBody probe(g, prm);
     const double omega_max = std::sqrt(probe.max_eigenvalue());
     prm.stiffness_damping  = 2.0 * damping_xi / omega_max;
-    fem::Platen platen(g, prm);
+    fem::SteelBody platen(g, prm);
     const double n_z  = platen.contact_normal_z(); // outward: the wall pushes along -n_z
     const double area = platen.mesh_volume() / g.thickness;
 
@@ -192,20 +192,20 @@ void check_compression(const CompressionResult &r, const char *what)
 
 TEST(FemCompression, TopBoxPlatenGivesEEpsAAndClosesEnergy)
 {
-  check_compression(compress(fem::PlatenShape::box, fem::PlatenSide::above, 0.0), "top box");
+  check_compression(compress(fem::BodyShape::box, fem::BodySide::above, 0.0), "top box");
 }
 
 TEST(FemCompression, BottomCylinderPlatenGivesEEpsAAndClosesEnergy)
 {
   // A = mesh volume / thickness (the inscribed polygon), the area the elements carry load on
-  check_compression(compress(fem::PlatenShape::cylinder, fem::PlatenSide::below, 0.0),
+  check_compression(compress(fem::BodyShape::cylinder, fem::BodySide::below, 0.0),
                     "bottom cylinder");
 }
 
 TEST(FemCompression, DampedRunBooksDissipationAndStillBalances)
 {
   // beta K v is ~0 when quasi-static, so the load is unchanged; the dissipation is booked
-  const CompressionResult r = compress(fem::PlatenShape::box, fem::PlatenSide::above, 0.05);
+  const CompressionResult r = compress(fem::BodyShape::box, fem::BodySide::above, 0.05);
   check_compression(r, "damped box");
   std::printf("damped box: dissipated %.3e J\n", r.dissipated);
   EXPECT_GT(r.dissipated, 0.0); // the ramp excites some vibration, which damping takes
@@ -220,7 +220,7 @@ namespace
     fem::Parameters prm;
     prm.element_size     = 0.005;
     prm.time_step_safety = 1.0;
-    fem::Platen platen(box_geometry(0.02, 0.02, 0.02), prm);
+    fem::SteelBody platen(box_geometry(0.02, 0.02, 0.02), prm);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> uniform(-1e-9, 1e-9);
     std::vector<double> u(3 * platen.n_nodes()), v(u.size(), 0.0);

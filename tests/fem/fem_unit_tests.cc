@@ -1,7 +1,7 @@
-// Unit tests of fem::Platen: mesh and boundary ids, lumped mass, the kernel of the stiffness
+// Unit tests of fem::SteelBody: mesh and boundary ids, lumped mass, the kernel of the stiffness
 // (rigid motion), patch test, lambda_max against a dense eigen-solve, rigid mode, API errors.
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <gtest/gtest.h>
 
@@ -16,11 +16,11 @@ namespace
 {
   constexpr double pi = 3.14159265358979323846;
 
-  fem::PlatenGeometry box_geometry(double sx, double sy, double t, double contact_z,
-                                   fem::PlatenSide side)
+  fem::BodyGeometry box_geometry(double sx, double sy, double t, double contact_z,
+                                   fem::BodySide side)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::box;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::box;
     g.size_x    = sx;
     g.size_y    = sy;
     g.thickness = t;
@@ -29,10 +29,10 @@ namespace
     return g;
   }
 
-  fem::PlatenGeometry cylinder_geometry(double d, double t, double contact_z, fem::PlatenSide side)
+  fem::BodyGeometry cylinder_geometry(double d, double t, double contact_z, fem::BodySide side)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::cylinder;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::cylinder;
     g.diameter  = d;
     g.thickness = t;
     g.contact_z = contact_z;
@@ -59,7 +59,7 @@ TEST(FemMesh, BoxLumpedMassSumsToRhoV)
 {
   fem::Parameters prm;
   prm.element_size = 0.005;
-  const fem::Platen platen(box_geometry(0.07, 0.04, 0.02, 0.0, fem::PlatenSide::above), prm);
+  const fem::SteelBody platen(box_geometry(0.07, 0.04, 0.02, 0.0, fem::BodySide::above), prm);
   const double V = 0.07 * 0.04 * 0.02; // a box is meshed exactly
   // the row-sum mass integrates N_i with Gauss 2x2x2, exact for trilinear cells: round-off only,
   // so 1e-4 (the brief's bound) is loose by many orders
@@ -79,7 +79,7 @@ TEST(FemMesh, CylinderLumpedMassSumsToRhoTimesMeshVolume)
   fem::Parameters prm;
   prm.element_size = 0.005;
   const double d = 0.07, t = 0.02;
-  const fem::Platen platen(cylinder_geometry(d, t, 0.1, fem::PlatenSide::above), prm);
+  const fem::SteelBody platen(cylinder_geometry(d, t, 0.1, fem::BodySide::above), prm);
   // mass vs the mesh's own volume: exact up to round-off (see the box test)
   EXPECT_NEAR(platen.total_mass() / (prm.density * platen.mesh_volume()), 1.0, 1e-4);
   // The trilinear mesh is a prism over an inscribed polygon: its volume is below pi r^2 t by
@@ -93,14 +93,14 @@ TEST(FemMesh, FacesSitOnTheirSideAndContactNormalsPointOut)
 {
   fem::Parameters prm;
   prm.element_size = 0.005;
-  for (const auto side : {fem::PlatenSide::above, fem::PlatenSide::below})
+  for (const auto side : {fem::BodySide::above, fem::BodySide::below})
     for (const bool cylinder : {false, true})
     {
       const double cz = 0.05, t = 0.02;
-      const fem::Platen platen(cylinder ? cylinder_geometry(0.05, t, cz, side)
+      const fem::SteelBody platen(cylinder ? cylinder_geometry(0.05, t, cz, side)
                                         : box_geometry(0.06, 0.03, t, cz, side),
                                prm);
-      const double n_z = (side == fem::PlatenSide::above) ? -1.0 : 1.0;
+      const double n_z = (side == fem::BodySide::above) ? -1.0 : 1.0;
       EXPECT_DOUBLE_EQ(platen.contact_normal_z(), n_z);
 
       const auto x = platen.contact_positions();
@@ -149,7 +149,7 @@ TEST(FemStiffness, RigidTranslationAndSmallRotationGiveNoInternalForce)
 {
   fem::Parameters prm;
   prm.element_size = 0.006;
-  const fem::Platen platen(cylinder_geometry(0.05, 0.02, 0.0, fem::PlatenSide::below), prm);
+  const fem::SteelBody platen(cylinder_geometry(0.05, 0.02, 0.0, fem::BodySide::below), prm);
   const auto x0       = platen.reference_positions();
   const std::size_t n = x0.size();
 
@@ -181,7 +181,7 @@ TEST(FemStiffness, LinearFieldLeavesInteriorNodesInEquilibrium)
   // not on the boundary; the resultant over the whole body is zero as well
   fem::Parameters prm;
   prm.element_size = 0.005;
-  const fem::Platen platen(box_geometry(0.02, 0.02, 0.02, 0.0, fem::PlatenSide::above), prm);
+  const fem::SteelBody platen(box_geometry(0.02, 0.02, 0.02, 0.0, fem::BodySide::above), prm);
   const auto x0 = platen.reference_positions();
   std::vector<double> u(x0.size());
   for (std::size_t v = 0; v < x0.size() / 3; ++v)
@@ -220,7 +220,7 @@ TEST(FemTimeStep, PowerIterationMatchesDenseEigenvalue)
   // lambda_max(M^-1 K) of a 2x2x2 mesh (81 dofs) from a dense symmetric eigen-solve
   fem::Parameters prm;
   prm.element_size = 0.005;
-  const fem::Platen platen(box_geometry(0.01, 0.01, 0.01, 0.0, fem::PlatenSide::above), prm);
+  const fem::SteelBody platen(box_geometry(0.01, 0.01, 0.01, 0.0, fem::BodySide::above), prm);
   const std::size_t n = 3 * platen.n_nodes();
   ASSERT_EQ(n, 81u);
   const auto m = platen.nodal_masses();
@@ -248,11 +248,11 @@ TEST(FemTimeStep, DampingShortensTheStableStep)
 {
   fem::Parameters prm;
   prm.element_size = 0.005;
-  const auto g     = box_geometry(0.02, 0.02, 0.01, 0.0, fem::PlatenSide::above);
-  const fem::Platen undamped(g, prm);
+  const auto g     = box_geometry(0.02, 0.02, 0.01, 0.0, fem::BodySide::above);
+  const fem::SteelBody undamped(g, prm);
   const double omega    = std::sqrt(undamped.max_eigenvalue());
   prm.stiffness_damping = 0.2 / omega; // xi = 0.1 at the highest mode
-  const fem::Platen damped(g, prm);
+  const fem::SteelBody damped(g, prm);
   const double expected = undamped.stable_time_step() * (std::sqrt(1.0 + 0.01) - 0.1);
   EXPECT_NEAR(damped.stable_time_step() / expected, 1.0, 1e-9); // same lambda, closed form
 }
@@ -260,9 +260,9 @@ TEST(FemTimeStep, DampingShortensTheStableStep)
 TEST(FemRigid, ReactionBalancesContactForcesAndEnergyCloses)
 {
   fem::Parameters prm;
-  prm.model        = fem::PlatenModel::rigid;
+  prm.model        = fem::SteelModel::rigid;
   prm.element_size = 0.005;
-  fem::Platen platen(cylinder_geometry(0.05, 0.02, 0.1, fem::PlatenSide::above), prm);
+  fem::SteelBody platen(cylinder_geometry(0.05, 0.02, 0.1, fem::BodySide::above), prm);
   EXPECT_TRUE(std::isinf(platen.stable_time_step()));
   EXPECT_DOUBLE_EQ(platen.strain_energy(), 0.0);
 
@@ -301,12 +301,12 @@ TEST(FemApi, RejectsBadInput)
 {
   fem::Parameters prm;
   prm.element_size = -1.0;
-  EXPECT_THROW(fem::Platen(fem::PlatenGeometry(), prm), std::invalid_argument);
+  EXPECT_THROW(fem::SteelBody(fem::BodyGeometry(), prm), std::invalid_argument);
   prm.element_size   = 0.01;
   prm.poissons_ratio = 0.5;
-  EXPECT_THROW(fem::Platen(fem::PlatenGeometry(), prm), std::invalid_argument);
+  EXPECT_THROW(fem::SteelBody(fem::BodyGeometry(), prm), std::invalid_argument);
   prm.poissons_ratio = 0.3;
-  fem::Platen platen(fem::PlatenGeometry(), prm);
+  fem::SteelBody platen(fem::BodyGeometry(), prm);
   EXPECT_THROW(platen.add_contact_forces(std::vector<double>(5, 0.0)), std::invalid_argument);
   EXPECT_THROW(platen.step(0.0, 0.0), std::invalid_argument);
 }
@@ -315,7 +315,7 @@ TEST(FemOutput, SnapshotUsesVtkHexahedraWithPositiveVolume)
 {
   fem::Parameters prm;
   prm.element_size = 0.01;
-  const fem::Platen platen(cylinder_geometry(0.05, 0.02, 0.0, fem::PlatenSide::above), prm);
+  const fem::SteelBody platen(cylinder_geometry(0.05, 0.02, 0.0, fem::BodySide::above), prm);
   const auto s = platen.mesh_snapshot();
   ASSERT_EQ(s.n_cells(), platen.n_cells());
   ASSERT_EQ(s.n_vertices(), platen.n_nodes());
@@ -345,17 +345,17 @@ TEST(FemOutput, SnapshotUsesVtkHexahedraWithPositiveVolume)
 TEST(FemMesh, JawContactFaceFollowsItsArc)
 {
   // ISRM jaw for a 50 mm disc: arc radius 1.5 x 25 mm, 30 mm wide, top jaw touching at z = 0.05
-  fem::PlatenGeometry g;
-  g.shape      = fem::PlatenShape::jaw;
+  fem::BodyGeometry g;
+  g.shape      = fem::BodyShape::jaw;
   g.size_x     = 0.03;
   g.size_y     = 0.03;
   g.thickness  = 0.02;
   g.jaw_radius = 0.0375;
   g.contact_z  = 0.05;
-  g.side       = fem::PlatenSide::above;
+  g.side       = fem::BodySide::above;
   fem::Parameters prm;
   prm.element_size = 0.0025;
-  const fem::Platen jaw(g, prm);
+  const fem::SteelBody jaw(g, prm);
   // the jaw is concave, it cradles the disc: every contact node lies on the arc
   // z = contact_z - (R - sqrt(R^2 - x^2)), bending down towards the disc away from the apex; the
   // transform places them there exactly, so only round-off remains

@@ -1,5 +1,5 @@
 // fem::Parameters::free_body: an elastic body with no prescribed motion (impact and wave checks).
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <gtest/gtest.h>
 
@@ -8,19 +8,19 @@
 
 namespace
 {
-  fem::Platen free_box(bool free_body, fem::PlatenModel model = fem::PlatenModel::elastic)
+  fem::SteelBody free_box(bool free_body, fem::SteelModel model = fem::SteelModel::elastic)
   {
-    fem::PlatenGeometry g;
-    g.shape     = fem::PlatenShape::box;
+    fem::BodyGeometry g;
+    g.shape     = fem::BodyShape::box;
     g.size_x    = 16e-3;
     g.size_y    = 16e-3;
     g.thickness = 8e-3;
-    g.side      = fem::PlatenSide::below;
+    g.side      = fem::BodySide::below;
     fem::Parameters p;
     p.model        = model;
     p.element_size = 2e-3;
     p.free_body    = free_body;
-    return fem::Platen(g, p);
+    return fem::SteelBody(g, p);
   }
 } // namespace
 
@@ -31,7 +31,7 @@ TEST(FreeBody, MomentumIsTheImpulseOfTheContactForces)
   const double dt = 1e-7, F = -1.0;
   for (const bool free_body : {true, false})
   {
-    fem::Platen body = free_box(free_body);
+    fem::SteelBody body = free_box(free_body);
     ASSERT_LT(dt, body.stable_time_step());
     std::vector<double> f(3 * body.n_contact_nodes(), 0.0);
     for (std::size_t i = 0; i < body.n_contact_nodes(); ++i)
@@ -62,7 +62,7 @@ TEST(FreeBody, MomentumIsTheImpulseOfTheContactForces)
 
 TEST(FreeBody, HasNoPrescribedMotion)
 {
-  fem::Platen body = free_box(true);
+  fem::SteelBody body = free_box(true);
   EXPECT_THROW(body.set_loaded_face_velocity([](double) { return 1.0; }), std::logic_error);
-  EXPECT_THROW(free_box(true, fem::PlatenModel::rigid), std::invalid_argument);
+  EXPECT_THROW(free_box(true, fem::SteelModel::rigid), std::invalid_argument);
 }

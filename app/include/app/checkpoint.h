@@ -12,7 +12,7 @@
 namespace app
 {
   /// Version written into every checkpoint; read_checkpoint refuses others.
-  /// 2: fem::Platen scalars gained the rigid x velocity and the frame force vector (disc cutter).
+  /// 2: fem::SteelBody scalars gained the rigid x velocity and the frame force vector (disc cutter).
   constexpr int checkpoint_version = 2;
 
   /// Writes `state` to `path` atomically (a temporary file renamed over `path`, so that a crash

@@ -30,7 +30,7 @@ namespace coupling
     std::size_t n_nodes() const { return mass.size(); }
   };
 
-  /// Faces from a flat list of 4 node indices per face (as fem::Platen::contact_faces() gives).
+  /// Faces from a flat list of 4 node indices per face (as fem::SteelBody::contact_faces() gives).
   inline std::vector<std::array<unsigned int, 4>> quad_faces(const std::vector<unsigned int> &flat)
   {
     std::vector<std::array<unsigned int, 4>> faces(flat.size() / 4);

@@ -7,14 +7,14 @@ namespace fem
 {
   /// Rigid: prescribed motion of every node, no internal force, reaction = inertia - contact
   /// forces. Elastic: linear elastic Q1 hexahedra, explicit central differences, lumped mass.
-  enum class PlatenModel
+  enum class SteelModel
   {
     rigid,
     elastic
   };
 
   /// Shape of the platen body.
-  enum class PlatenShape
+  enum class BodyShape
   {
     cylinder, ///< disc of `diameter` and `thickness`, axis along z (UCS, CTCS)
     box,      ///< flat block `size_x` x `size_y` x `thickness` (BTS)
@@ -31,7 +31,7 @@ namespace fem
   };
 
   /// Which side of the contact plane z = contact_z the platen body lies on.
-  enum class PlatenSide
+  enum class BodySide
   {
     above, ///< top platen: body in [contact_z, contact_z + thickness], contact normal -z
     below  ///< bottom platen: body in [contact_z - thickness, contact_z], contact normal +z
@@ -53,9 +53,9 @@ namespace fem
   }                                        // namespace boundary_id
 
   /// Geometry of one platen. Lengths [m]. The body is centred on (center_x, center_y).
-  struct PlatenGeometry
+  struct BodyGeometry
   {
-    PlatenShape shape = PlatenShape::cylinder;
+    BodyShape shape = BodyShape::cylinder;
     double diameter   = 0.07;   ///< cylinder diameter [m]
     double size_x     = 0.07;   ///< box extent along x [m]
     double size_y     = 0.04;   ///< box extent along y [m]
@@ -69,13 +69,13 @@ namespace fem
     double contact_z  = 0.0;    ///< z of the contact face [m]
     double center_x   = 0.0;    ///< [m]
     double center_y   = 0.0;    ///< [m]
-    PlatenSide side   = PlatenSide::above;
+    BodySide side   = BodySide::above;
   };
 
   /// Model, material and numerics of one platen. Defaults: elastic steel.
   struct Parameters
   {
-    PlatenModel model     = PlatenModel::elastic;
+    SteelModel model     = SteelModel::elastic;
     double youngs_modulus = 200e9;  ///< E [Pa]
     double poissons_ratio = 0.3;    ///< nu [-]
     double density        = 7850.0; ///< rho [kg/m^3]

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// One loading platen (rigid or linear elastic steel) for the SPH-FEM co-simulation.
+/// A steel body (a loading platen or a cutter), rigid or linear elastic, for the SPH-FEM
+/// co-simulation.
 /// Plain data in and out, no deal.II types (the implementation lives behind a pointer).
 ///
 /// Conventions
@@ -48,18 +49,19 @@ namespace fem
   /// Throws std::runtime_error naming the file if it cannot be written.
   void write_vtu(const MeshSnapshot &snapshot, const std::string &filename);
 
-  /// A rigid or elastic platen: mesh, explicit dynamics, load cell and coupling interface.
-  class Platen
+  /// A rigid or elastic steel body (platen or cutter): mesh, explicit dynamics, load cell and
+  /// coupling interface.
+  class SteelBody
   {
   public:
     /// Builds the mesh, the lumped mass and (elastic) the stiffness. Throws std::invalid_argument
     /// with an actionable message on non-positive sizes or material constants.
-    Platen(const PlatenGeometry &geometry, const Parameters &parameters = Parameters());
-    ~Platen();
-    Platen(Platen &&) noexcept;
-    Platen &operator=(Platen &&) noexcept;
-    Platen(const Platen &)            = delete;
-    Platen &operator=(const Platen &) = delete;
+    SteelBody(const BodyGeometry &geometry, const Parameters &parameters = Parameters());
+    ~SteelBody();
+    SteelBody(SteelBody &&) noexcept;
+    SteelBody &operator=(SteelBody &&) noexcept;
+    SteelBody(const SteelBody &)            = delete;
+    SteelBody &operator=(const SteelBody &) = delete;
 
     /// Prescribed z-velocity [m/s] of the loaded face as a function of time t [s]; evaluated at
     /// half steps. Default: fixed (zero). Rigid: the velocity of the whole body.

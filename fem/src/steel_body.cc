@@ -1,6 +1,6 @@
 /// @file
 /// The only deal.II translation unit of the fem library: mesh generation, lumped mass, assembled
-/// stiffness, power iteration and the explicit central-difference step of fem::Platen.
+/// stiffness, power iteration and the explicit central-difference step of fem::SteelBody.
 ///
 /// Unknowns are numbered node-major, dof = 3 * vertex + component, with vertices compacted to
 /// the snapshot order, so plain arrays cross the public interface without a permutation.
@@ -18,7 +18,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
-#include <fem/platen.h>
+#include <fem/steel_body.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,19 +41,19 @@ namespace fem
       if (!(value > 0.0) || !std::isfinite(value))
       {
         std::ostringstream msg;
-        msg << "fem::Platen: " << name << " must be a positive finite number, got " << value;
+        msg << "fem::SteelBody: " << name << " must be a positive finite number, got " << value;
         throw std::invalid_argument(msg.str());
       }
     }
 
     /// Height [m] of the contact face above the tip at lateral distance `r` [m] from the tip
     /// (wedge: |x|; cone: the radius; disc cutter, jaw: |x|): the profile the flat face is bent to.
-    double tip_rise(const PlatenGeometry &g, const double r)
+    double tip_rise(const BodyGeometry &g, const double r)
     {
       switch (g.shape)
       {
-        case PlatenShape::wedge:
-        case PlatenShape::cone:
+        case BodyShape::wedge:
+        case BodyShape::cone:
         {
           // a circular tip of radius rho up to r_t = rho cos(alpha), where it meets the flank
           // tangentially (slope cot(alpha) on both sides)
@@ -63,64 +63,64 @@ namespace fem
             return rho - std::sqrt(rho * rho - x * x);
           return rho - rho * std::sin(a) + (x - r_t) / std::tan(a);
         }
-        case PlatenShape::disc_cutter:
+        case BodyShape::disc_cutter:
           return g.cutter_radius - std::sqrt(g.cutter_radius * g.cutter_radius - r * r);
-        case PlatenShape::jaw:
+        case BodyShape::jaw:
           return g.jaw_radius - std::sqrt(g.jaw_radius * g.jaw_radius - r * r);
         default:
           return 0.0;
       }
     }
 
-    void validate(const PlatenGeometry &g, const Parameters &p)
+    void validate(const BodyGeometry &g, const Parameters &p)
     {
-      if (g.shape == PlatenShape::cylinder || g.shape == PlatenShape::cone)
-        check_positive(g.diameter, "PlatenGeometry::diameter [m]");
+      if (g.shape == BodyShape::cylinder || g.shape == BodyShape::cone)
+        check_positive(g.diameter, "BodyGeometry::diameter [m]");
       else
       {
-        check_positive(g.size_x, "PlatenGeometry::size_x [m]");
-        check_positive(g.size_y, "PlatenGeometry::size_y [m]");
-        if (g.shape == PlatenShape::jaw && !(g.jaw_radius > 0.5 * g.size_x))
+        check_positive(g.size_x, "BodyGeometry::size_x [m]");
+        check_positive(g.size_y, "BodyGeometry::size_y [m]");
+        if (g.shape == BodyShape::jaw && !(g.jaw_radius > 0.5 * g.size_x))
           throw std::invalid_argument(
-            "fem::Platen: PlatenGeometry::jaw_radius [m] must exceed size_x / 2 = " +
+            "fem::SteelBody: BodyGeometry::jaw_radius [m] must exceed size_x / 2 = " +
             std::to_string(0.5 * g.size_x) + ", got " + std::to_string(g.jaw_radius));
       }
-      check_positive(g.thickness, "PlatenGeometry::thickness [m]");
+      check_positive(g.thickness, "BodyGeometry::thickness [m]");
       // the tip profile must leave the body at least a third of its thickness at the rim, or the
       // bent cells invert
-      const double rim_rise = tip_rise(g, g.shape == PlatenShape::cone ? 0.5 * g.diameter
+      const double rim_rise = tip_rise(g, g.shape == BodyShape::cone ? 0.5 * g.diameter
                                                                           : 0.5 * g.size_x);
-      if (g.shape == PlatenShape::wedge || g.shape == PlatenShape::cone)
+      if (g.shape == BodyShape::wedge || g.shape == BodyShape::cone)
         if (!(g.tip_half_angle > 0.05 && g.tip_half_angle < 1.53))
-          throw std::invalid_argument("fem::Platen: PlatenGeometry::tip_half_angle must lie in "
+          throw std::invalid_argument("fem::SteelBody: BodyGeometry::tip_half_angle must lie in "
                                       "(0.05, 1.53) rad, got " +
                                       std::to_string(g.tip_half_angle));
-      if (g.shape == PlatenShape::disc_cutter && !(g.cutter_radius > 0.5 * g.size_x))
+      if (g.shape == BodyShape::disc_cutter && !(g.cutter_radius > 0.5 * g.size_x))
         throw std::invalid_argument(
-          "fem::Platen: PlatenGeometry::cutter_radius [m] must exceed size_x / 2 = " +
+          "fem::SteelBody: BodyGeometry::cutter_radius [m] must exceed size_x / 2 = " +
           std::to_string(0.5 * g.size_x) + ", got " + std::to_string(g.cutter_radius));
       if (!(rim_rise < 2.0 / 3.0 * g.thickness))
         throw std::invalid_argument(
-          "fem::Platen: PlatenGeometry::thickness [m] must exceed 1.5 x the rise of the tip "
+          "fem::SteelBody: BodyGeometry::thickness [m] must exceed 1.5 x the rise of the tip "
           "profile at the rim (" +
           std::to_string(rim_rise) + " m); got " + std::to_string(g.thickness) +
           "; make the body thicker or narrower");
       check_positive(p.element_size, "Parameters::element_size [m]");
       check_positive(p.density, "Parameters::density [kg/m^3]");
       check_positive(p.time_step_safety, "Parameters::time_step_safety [-]");
-      if (p.free_body && p.model != PlatenModel::elastic)
-        throw std::invalid_argument("fem::Platen: Parameters::free_body needs the elastic model (a "
+      if (p.free_body && p.model != SteelModel::elastic)
+        throw std::invalid_argument("fem::SteelBody: Parameters::free_body needs the elastic model (a "
                                     "rigid platen is defined by its prescribed motion)");
-      if (p.model == PlatenModel::elastic)
+      if (p.model == SteelModel::elastic)
       {
         check_positive(p.youngs_modulus, "Parameters::youngs_modulus [Pa]");
         if (!(p.poissons_ratio > -1.0 && p.poissons_ratio < 0.5))
           throw std::invalid_argument(
-            "fem::Platen: Parameters::poissons_ratio must lie in (-1, 0.5), got " +
+            "fem::SteelBody: Parameters::poissons_ratio must lie in (-1, 0.5), got " +
             std::to_string(p.poissons_ratio));
         if (!(p.stiffness_damping >= 0.0))
           throw std::invalid_argument(
-            "fem::Platen: Parameters::stiffness_damping [s] must be >= 0, got " +
+            "fem::SteelBody: Parameters::stiffness_damping [s] must be >= 0, got " +
             std::to_string(p.stiffness_damping));
       }
     }
@@ -132,7 +132,7 @@ namespace fem
 
     /// Cylinder of the geometry's diameter and thickness, axis along z, z in [0, thickness],
     /// centred on the z axis. End faces keep ids 1 and 2, the hull id 0.
-    void make_cylinder(Triangulation<3> &tria, const PlatenGeometry &g, const double h,
+    void make_cylinder(Triangulation<3> &tria, const BodyGeometry &g, const double h,
                        const unsigned int min_refine = 0)
     {
       const double radius = 0.5 * g.diameter;
@@ -177,11 +177,11 @@ namespace fem
     }
 
     /// Box centred on the z axis, z in [0, thickness]. Colorized ids 0..5 (x-, x+, y-, y+, z-, z+).
-    void make_box(Triangulation<3> &tria, const PlatenGeometry &g, const double h)
+    void make_box(Triangulation<3> &tria, const BodyGeometry &g, const double h)
     {
       unsigned int n_x = n_cells_for(g.size_x, h);
       // wedge, disc cutter: an even count puts a vertex line on the tip (x = 0)
-      if ((g.shape == PlatenShape::wedge || g.shape == PlatenShape::disc_cutter) && n_x % 2 == 1)
+      if ((g.shape == BodyShape::wedge || g.shape == BodyShape::disc_cutter) && n_x % 2 == 1)
         ++n_x;
       const std::vector<unsigned int> reps = {n_x, n_cells_for(g.size_y, h),
                                               n_cells_for(g.thickness, h)};
@@ -191,16 +191,16 @@ namespace fem
     }
   } // namespace
 
-  class Platen::Impl
+  class SteelBody::Impl
   {
   public:
-    Impl(const PlatenGeometry &geometry, const Parameters &parameters);
+    Impl(const BodyGeometry &geometry, const Parameters &parameters);
 
     void step(double t, double dt);
     double lambda_max() const;
     void vertex_field_to_vector(const std::vector<double> &field, Vector<double> &out) const;
 
-    PlatenGeometry geometry;
+    BodyGeometry geometry;
     Parameters prm;
 
     Triangulation<3> tria;
@@ -240,21 +240,21 @@ namespace fem
     mutable double lambda_cache = -1.0;
   };
 
-  Platen::Impl::Impl(const PlatenGeometry &g, const Parameters &p)
+  SteelBody::Impl::Impl(const BodyGeometry &g, const Parameters &p)
       : geometry(g)
       , prm(p)
   {
     validate(g, p);
-    if (g.shape == PlatenShape::cylinder)
+    if (g.shape == BodyShape::cylinder)
       make_cylinder(tria, g, p.element_size);
-    else if (g.shape == PlatenShape::cone)
+    else if (g.shape == BodyShape::cone)
       make_cylinder(tria, g, p.element_size, 1); // one refinement puts a vertex on the axis
     else
       make_box(tria, g, p.element_size);
 
     // Place the body on its side of the contact plane and mark the faces. Before the shift the
     // body occupies z in [0, thickness].
-    const bool above        = (g.side == PlatenSide::above);
+    const bool above        = (g.side == BodySide::above);
     const double contact_z0 = above ? 0.0 : g.thickness; // contact plane before the shift
     const double tol        = 1e-6 * g.thickness;
     for (const auto &cell : tria.active_cell_iterators())
@@ -272,7 +272,7 @@ namespace fem
           else
             face->set_boundary_id(boundary_id::free_faces);
         }
-    if (g.shape != PlatenShape::cylinder && g.shape != PlatenShape::box)
+    if (g.shape != BodyShape::cylinder && g.shape != BodyShape::box)
     {
       // bend the contact face into the tip profile z_c + rise(x) (disc cutter: the arc
       // R - sqrt(R^2 - x^2); wedge: |x| / tan(alpha); cone: r / tan(alpha)), away from the rock:
@@ -280,10 +280,10 @@ namespace fem
       // face bends by the same arc towards the rock (a jaw radius above the disc radius keeps it
       // clear of the disc but at the apex). The bend fades linearly to zero at the loaded face,
       // which stays flat; boundary ids were set on the flat body and are kept
-      const double towards_rock = g.shape == PlatenShape::jaw ? -1.0 : 1.0;
+      const double towards_rock = g.shape == BodyShape::jaw ? -1.0 : 1.0;
       GridTools::transform(
         [&](const Point<3> &q) {
-          const double r     = g.shape == PlatenShape::cone ? std::hypot(q[0], q[1]) : q[0];
+          const double r     = g.shape == BodyShape::cone ? std::hypot(q[0], q[1]) : q[0];
           const double rise  = tip_rise(g, r);
           const double share = above ? 1.0 - q[2] / g.thickness : q[2] / g.thickness;
           Point<3> out       = q;
@@ -339,7 +339,7 @@ namespace fem
     }
 
     // Stiffness (elastic only), node-major dofs.
-    if (p.model == PlatenModel::elastic)
+    if (p.model == SteelModel::elastic)
     {
       DynamicSparsityPattern dsp(n_dofs, n_dofs);
       for (unsigned int c = 0; c < n_cells; ++c)
@@ -446,7 +446,7 @@ namespace fem
           prescribed[3 * n] = prescribed[3 * n + 1] = true;
       }
     if (contact_nodes.empty() || loaded_nodes.empty())
-      throw std::logic_error("fem::Platen: the mesh has no contact or no loaded face");
+      throw std::logic_error("fem::SteelBody: the mesh has no contact or no loaded face");
 
     u.reinit(n_dofs);
     v.reinit(n_dofs);
@@ -456,20 +456,20 @@ namespace fem
     du_prev.reinit(n_dofs);
   }
 
-  void Platen::Impl::vertex_field_to_vector(const std::vector<double> &field,
+  void SteelBody::Impl::vertex_field_to_vector(const std::vector<double> &field,
                                             Vector<double> &out) const
   {
     if (field.size() != 3 * n_vertices)
       throw std::invalid_argument(
-        "fem::Platen: a vertex field needs 3 * n_nodes() = " + std::to_string(3 * n_vertices) +
+        "fem::SteelBody: a vertex field needs 3 * n_nodes() = " + std::to_string(3 * n_vertices) +
         " values, got " + std::to_string(field.size()));
     out.reinit(field.size());
     std::copy(field.begin(), field.end(), out.begin());
   }
 
-  double Platen::Impl::lambda_max() const
+  double SteelBody::Impl::lambda_max() const
   {
-    if (prm.model == PlatenModel::rigid)
+    if (prm.model == SteelModel::rigid)
       return 0.0;
     if (lambda_cache >= 0.0)
       return lambda_cache;
@@ -517,10 +517,10 @@ namespace fem
     return lambda_cache;
   }
 
-  void Platen::Impl::step(const double t, const double dt)
+  void SteelBody::Impl::step(const double t, const double dt)
   {
     if (!(dt > 0.0))
-      throw std::invalid_argument("fem::Platen::step: dt must be > 0, got " + std::to_string(dt));
+      throw std::invalid_argument("fem::SteelBody::step: dt must be > 0, got " + std::to_string(dt));
     const double dt_mid      = 0.5 * (dt_prev + dt); // v lives at half steps
     const double t_half      = t + 0.5 * dt;
     const double vz_new      = velocity_z ? velocity_z(t_half) : 0.0;
@@ -529,7 +529,7 @@ namespace fem
     // prescribed velocity of a loaded-face dof by component (y is held)
     const double v_prescribed[3] = {vx_new, 0.0, vz_new};
 
-    if (prm.model == PlatenModel::rigid)
+    if (prm.model == SteelModel::rigid)
     {
       const double a_x    = (vx_new - rigid_vx) / dt_mid;
       const double a_z    = (vz_new - rigid_vz) / dt_mid;
@@ -603,64 +603,64 @@ namespace fem
   }
 
   // ---------------------------------------------------------------------------------------------
-  // Platen: thin forwarding layer
+  // SteelBody: thin forwarding layer
 
-  Platen::Platen(const PlatenGeometry &geometry, const Parameters &parameters)
+  SteelBody::SteelBody(const BodyGeometry &geometry, const Parameters &parameters)
       : impl_(std::make_unique<Impl>(geometry, parameters))
   {}
 
-  Platen::~Platen()                             = default;
-  Platen::Platen(Platen &&) noexcept            = default;
-  Platen &Platen::operator=(Platen &&) noexcept = default;
+  SteelBody::~SteelBody()                             = default;
+  SteelBody::SteelBody(SteelBody &&) noexcept            = default;
+  SteelBody &SteelBody::operator=(SteelBody &&) noexcept = default;
 
-  void Platen::set_loaded_face_velocity(std::function<double(double)> velocity_z)
+  void SteelBody::set_loaded_face_velocity(std::function<double(double)> velocity_z)
   {
     if (impl_->prm.free_body)
-      throw std::logic_error("fem::Platen::set_loaded_face_velocity: a free body (Parameters::"
+      throw std::logic_error("fem::SteelBody::set_loaded_face_velocity: a free body (Parameters::"
                              "free_body) has no prescribed motion");
     impl_->velocity_z = std::move(velocity_z);
   }
 
-  void Platen::set_loaded_face_velocity_x(std::function<double(double)> velocity_x)
+  void SteelBody::set_loaded_face_velocity_x(std::function<double(double)> velocity_x)
   {
     impl_->velocity_x = std::move(velocity_x);
   }
 
-  bool Platen::is_rigid() const
+  bool SteelBody::is_rigid() const
   {
-    return impl_->prm.model == PlatenModel::rigid;
+    return impl_->prm.model == SteelModel::rigid;
   }
-  std::size_t Platen::n_nodes() const
+  std::size_t SteelBody::n_nodes() const
   {
     return impl_->n_vertices;
   }
-  std::size_t Platen::n_cells() const
+  std::size_t SteelBody::n_cells() const
   {
     return impl_->cell_vertices.size() / 8;
   }
-  double Platen::total_mass() const
+  double SteelBody::total_mass() const
   {
     return impl_->mass;
   }
-  double Platen::mesh_volume() const
+  double SteelBody::mesh_volume() const
   {
     return impl_->volume;
   }
-  double Platen::contact_normal_z() const
+  double SteelBody::contact_normal_z() const
   {
-    return impl_->geometry.side == PlatenSide::above ? -1.0 : 1.0;
+    return impl_->geometry.side == BodySide::above ? -1.0 : 1.0;
   }
-  double Platen::max_eigenvalue() const
+  double SteelBody::max_eigenvalue() const
   {
     return impl_->lambda_max();
   }
 
-  std::size_t Platen::n_contact_nodes() const
+  std::size_t SteelBody::n_contact_nodes() const
   {
     return impl_->contact_nodes.size();
   }
 
-  std::vector<double> Platen::contact_positions() const
+  std::vector<double> SteelBody::contact_positions() const
   {
     std::vector<double> out;
     out.reserve(3 * impl_->contact_nodes.size());
@@ -670,7 +670,7 @@ namespace fem
     return out;
   }
 
-  std::vector<double> Platen::contact_velocities() const
+  std::vector<double> SteelBody::contact_velocities() const
   {
     std::vector<double> out;
     out.reserve(3 * impl_->contact_nodes.size());
@@ -680,7 +680,7 @@ namespace fem
     return out;
   }
 
-  std::vector<double> Platen::contact_masses() const
+  std::vector<double> SteelBody::contact_masses() const
   {
     std::vector<double> out;
     out.reserve(impl_->contact_nodes.size());
@@ -689,29 +689,29 @@ namespace fem
     return out;
   }
 
-  std::vector<double> Platen::contact_areas() const
+  std::vector<double> SteelBody::contact_areas() const
   {
     return impl_->contact_area;
   }
 
-  const std::vector<unsigned int> &Platen::contact_faces() const
+  const std::vector<unsigned int> &SteelBody::contact_faces() const
   {
     return impl_->contact_faces;
   }
 
-  void Platen::add_contact_forces(const std::vector<double> &forces)
+  void SteelBody::add_contact_forces(const std::vector<double> &forces)
   {
     const auto &nodes = impl_->contact_nodes;
     if (forces.size() != 3 * nodes.size())
       throw std::invalid_argument(
-        "fem::Platen::add_contact_forces: expected 3 * n_contact_nodes() = " +
+        "fem::SteelBody::add_contact_forces: expected 3 * n_contact_nodes() = " +
         std::to_string(3 * nodes.size()) + " values, got " + std::to_string(forces.size()));
     for (std::size_t k = 0; k < nodes.size(); ++k)
       for (unsigned int d = 0; d < 3; ++d)
         impl_->f_ext[3 * nodes[k] + d] += forces[3 * k + d];
   }
 
-  double Platen::stable_time_step() const
+  double SteelBody::stable_time_step() const
   {
     if (is_rigid())
       return std::numeric_limits<double>::infinity();
@@ -720,29 +720,29 @@ namespace fem
     return impl_->prm.time_step_safety * 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
   }
 
-  void Platen::step(const double t, const double dt)
+  void SteelBody::step(const double t, const double dt)
   {
     impl_->step(t, dt);
   }
-  double Platen::time() const
+  double SteelBody::time() const
   {
     return impl_->time_;
   }
 
-  double Platen::reaction_force() const
+  double SteelBody::reaction_force() const
   {
     return impl_->reaction;
   }
-  std::array<double, 3> Platen::reaction_force_vector() const
+  std::array<double, 3> SteelBody::reaction_force_vector() const
   {
     return {{impl_->reaction_xyz[0], impl_->reaction_xyz[1], impl_->reaction_xyz[2]}};
   }
-  double Platen::compressive_force() const
+  double SteelBody::compressive_force() const
   {
     return contact_normal_z() * impl_->reaction;
   }
 
-  double Platen::loaded_face_displacement() const
+  double SteelBody::loaded_face_displacement() const
   {
     double sum = 0.0;
     for (const unsigned int n : impl_->loaded_nodes)
@@ -750,7 +750,7 @@ namespace fem
     return sum / impl_->loaded_nodes.size();
   }
 
-  double Platen::contact_face_displacement() const
+  double SteelBody::contact_face_displacement() const
   {
     double sum = 0.0;
     for (const unsigned int n : impl_->contact_nodes)
@@ -758,7 +758,7 @@ namespace fem
     return sum / impl_->contact_nodes.size();
   }
 
-  double Platen::kinetic_energy() const
+  double SteelBody::kinetic_energy() const
   {
     double e = 0.0;
     for (std::size_t i = 0; i < impl_->v.size(); ++i)
@@ -766,21 +766,21 @@ namespace fem
     return 0.5 * e;
   }
 
-  double Platen::strain_energy() const
+  double SteelBody::strain_energy() const
   {
     return is_rigid() ? 0.0 : impl_->strain_energy_mid;
   }
 
-  double Platen::external_work() const
+  double SteelBody::external_work() const
   {
     return impl_->work;
   }
-  double Platen::damping_dissipation() const
+  double SteelBody::damping_dissipation() const
   {
     return impl_->dissipated;
   }
 
-  MeshSnapshot Platen::mesh_snapshot() const
+  MeshSnapshot SteelBody::mesh_snapshot() const
   {
     const Impl &im = *impl_;
     MeshSnapshot s;
@@ -831,21 +831,21 @@ namespace fem
     return s;
   }
 
-  void Platen::write_vtu(const std::string &filename) const
+  void SteelBody::write_vtu(const std::string &filename) const
   {
     fem::write_vtu(mesh_snapshot(), filename);
   }
 
-  std::vector<double> Platen::reference_positions() const
+  std::vector<double> SteelBody::reference_positions() const
   {
     return impl_->x0;
   }
-  std::vector<double> Platen::nodal_masses() const
+  std::vector<double> SteelBody::nodal_masses() const
   {
     return impl_->m_node;
   }
 
-  std::vector<double> Platen::internal_force(const std::vector<double> &displacement) const
+  std::vector<double> SteelBody::internal_force(const std::vector<double> &displacement) const
   {
     Vector<double> uu;
     impl_->vertex_field_to_vector(displacement, uu);
@@ -856,7 +856,7 @@ namespace fem
     return std::vector<double>(f.begin(), f.end());
   }
 
-  void Platen::set_state(const std::vector<double> &displacement,
+  void SteelBody::set_state(const std::vector<double> &displacement,
                          const std::vector<double> &velocity)
   {
     Impl &im = *impl_;
@@ -877,7 +877,7 @@ namespace fem
   }
 
   // ---- checkpoints (issue 9): every member of Impl that step() changes ----------------------
-  void Platen::save_state(std::map<std::string, std::vector<double>> &out,
+  void SteelBody::save_state(std::map<std::string, std::vector<double>> &out,
                           const std::string &prefix) const
   {
     const Impl &im = *impl_;
@@ -898,7 +898,7 @@ namespace fem
                                im.reaction_xyz[1], im.reaction_xyz[2]};
   }
 
-  void Platen::load_state(const std::map<std::string, std::vector<double>> &in,
+  void SteelBody::load_state(const std::map<std::string, std::vector<double>> &in,
                           const std::string &prefix)
   {
     Impl &im  = *impl_;
