@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Whole coupled runs through `cosim` on 1 and 2 threads (issue 8): what a user's run costs.
+"""Whole coupled runs through `cosim` on 1 and 2 threads: what a user's run costs.
 
 Usage: cosim_bench.py COSIM ROOT OUT_DIR [SPACING=0.0025] [CASES=ucs,bts]
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Where the second thread goes: interleaved rounds of sph_bench (issue 8's 2-thread target).
+"""Where the second thread goes: interleaved rounds of sph_bench (2-thread target 1.8x).
 
 Usage: thread_study.py SPH_BENCH OUT_DIR [ROUNDS=8] [STEPS=40] [SPACING=0.00125]
 

@@ -22,7 +22,7 @@ namespace app
            "\n"
            "What the simulation gets wrong on measured data, the cause, the extension and the "
            "gain.\n"
-           "DATA_DIR holds any of material.csv, strength.csv, curves/*.csv (design.md, 'Measured "
+           "DATA_DIR: any of material.csv, strength.csv, curves/*.csv (docs/design.md, 'Measured "
            "data').\n"
            "The baseline is linear Mohr-Coulomb with the measured c, phi (or calibrated from UCS "
            "and BTS),\n"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the studies of cases/studies with `cosim study` and copies each study.csv / study.png into
-# cases/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
+# docs/results/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
 # usage: cases/studies/run_studies.sh [NAME ...]   (no NAME: all, in the order below)
 # Environment: COSIM (default build/bin/cosim), EXTRA (more cosim options, e.g. --set ...),
 # SPACING (a particle spacing [m] for every run of the study), SUFFIX (appended to the study's
@@ -21,9 +21,9 @@ study() { # NAME CASE ARGS...
   shift 2
   echo "== $name: cosim study $case $* -o results/studies/$name --force" >&2
   "$cosim" study "$case" "$@" "${quick[@]}" ${EXTRA:-} -o "results/studies/$name" --force || true
-  mkdir -p "cases/studies/$name"
+  mkdir -p "docs/results/studies/$name"
   for f in study.csv study.png; do
-    if [ -f "results/studies/$name/$f" ]; then cp "results/studies/$name/$f" "cases/studies/$name/"; fi
+    if [ -f "results/studies/$name/$f" ]; then cp "results/studies/$name/$f" "docs/results/studies/$name/"; fi
   done
 }
 
@@ -33,7 +33,7 @@ run() {
     bts-rate)     study bts-rate $bts --key "Loading/Strain rate" --values 0.25,0.5,1,2,5,10,20 ;;
     # the 25 mm disc allows at most 2.5 mm (10 particles through the thickness): Table 1's 50 mm
     # discs. 50/12 and 50/15 mm stand in for 4 and 3 mm, which do not divide 50 mm (they started
-    # with the platens inside the lattice before session 6; bts-spacing-paper has them now).
+    # with the platens inside the lattice in older versions; bts-spacing-paper has them).
     bts-spacing)  study bts-spacing $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \
                     --values 0.005,0.0041667,0.0033333,0.0025,0.002 ;;
     bts-spacing-paper) study bts-spacing-paper $bts --set "Test/Length=0.05" --key "SPH/Particle spacing" \

@@ -1,4 +1,4 @@
-// Readers of the measured-data folder of `cosim diagnose` (design.md, "Measured data"). Every bad
+// Readers of the measured-data folder of cosim diagnose (docs/design.md, Measured data). Every bad
 // row throws an InputError naming the file and line, what was wrong and what is accepted.
 #include <diagnose/csv.h>
 #include <diagnose/diagnose.h>
@@ -159,7 +159,7 @@ namespace diagnose
   Data read_data(const std::string &folder)
   {
     if (!fs::is_directory(folder))
-      throw InputError(folder + ": not a folder; give the measured-data folder (design.md)");
+      throw InputError(folder + ": not a folder; give the measured-data folder (docs/design.md)");
     Data data;
     const fs::path root(folder);
     if (fs::exists(root / "material.csv"))

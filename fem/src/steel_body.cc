@@ -876,7 +876,7 @@ namespace fem
     im.dt_prev = 0.0;
   }
 
-  // ---- checkpoints (issue 9): every member of Impl that step() changes ----------------------
+  // ---- checkpoints: every member of Impl that step() changes -------------------------------
   void SteelBody::save_state(std::map<std::string, std::vector<double>> &out,
                           const std::string &prefix) const
   {

@@ -1,6 +1,6 @@
 // Bad input to the built `cosim`: exit status 2, exactly one line on stderr that names the
-// culprit (file:line, key or option) and what is accepted, and nothing written (design.md,
-// issues 2 and 9). Validation happens before run_case, so none of this needs the drivers.
+// culprit (file:line, key or option) and what is accepted, and nothing written (docs/design.md,
+// "The cosim command line"). Validation happens before run_case, so none of this needs the drivers.
 #include "subprocess.h"
 
 #include <gtest/gtest.h>

@@ -85,7 +85,7 @@ TEST(CaseFile, TensionCutoffDefaultsToTheGroupsBts)
 
 TEST(CaseFile, TssfacAboveOneIsAcceptedWithAWarning)
 {
-  // issue 9: TSSFAC 5 is the injected instability the run itself must catch
+  // TSSFAC 5 is the injected instability the run itself must catch
   const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/TSSFAC=5"});
   ASSERT_EQ(c.warnings.size(), 1u);
   EXPECT_NE(c.warnings[0].find("TSSFAC"), std::string::npos);

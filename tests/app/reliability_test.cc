@@ -1,4 +1,4 @@
-// Issue 9: instability detection, checkpoint / restart and determinism of the coupled run.
+// Reliability: instability detection, checkpoint / restart and determinism of the coupled run.
 // Every comparison of histories here is bitwise (memcmp of the doubles), on purpose: the contract
 // is "identical", not "close", for the same thread count.
 #include "history_compare.h"
@@ -307,8 +307,8 @@ TEST(Restart, BadRestartArgumentsAreInputErrors)
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
-// More malformed inputs (issue 9; tests/app/bad_input_test.cc has the first 41): every range the
-// case file checks that had no test yet, and the keys this issue adds. Each: exit status 2, one
+// More malformed inputs (tests/app/bad_input_test.cc has the first 41): every range the
+// case file checks that has no test there, and the reliability keys. Each: exit status 2, one
 // line naming the key and what is accepted, nothing written.
 TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
 {

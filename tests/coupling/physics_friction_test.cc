@@ -1,4 +1,4 @@
-// Coulomb friction between an SPH rock block and a platen (issue 5): a block pressed with a normal
+// Coulomb friction between an SPH rock block and a platen: a block pressed with a normal
 // force N starts to slide when the tangential force reaches mu N and slides against mu_d N; the
 // stick springs stay stable (the coupled time step counts them, coupled_time_step()).
 #include "two_body.h"

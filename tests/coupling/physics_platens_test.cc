@@ -1,4 +1,4 @@
-// The coupled driver with elastic steel platens (issue 5): the forces exchanged each step cancel,
+// The coupled driver with elastic steel platens: the forces exchanged each step cancel,
 // and the apparent modulus against the series stiffness of rock, contact layers and platens;
 // BTS with the ISRM curved jaws.
 #include "run_helpers.h"

@@ -1,4 +1,4 @@
-// Coupling checks on an SPH rock body and one FEM body (issue 5): conservation in an impact, wave
+// Coupling checks on an SPH rock body and one FEM body: conservation in an impact, wave
 // transmission across the steel/rock interface, and Coulomb friction onset and sliding.
 #include "two_body.h"
 

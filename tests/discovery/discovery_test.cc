@@ -1,4 +1,4 @@
-// Hidden-effect tests of `cosim diagnose` (issue 7). The generator (generator.h) draws the effect's
+// Hidden-effect tests of `cosim diagnose`. The generator (generator.h) draws the effect's
 // parameter from a seeded range, writes a data folder with replicate scatter and curve noise (its
 // test programme is stated there); the diagnosis, not told the effect, must name it, recover its
 // parameter within 10 % and cut the held-out error at least five-fold where the baseline is wrong

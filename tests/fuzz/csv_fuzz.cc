@@ -1,4 +1,4 @@
-// libFuzzer target for the CSV reader (issue 9): any byte string is either a table or an
+// libFuzzer target for the CSV reader: any byte string is either a table or an
 // InputError naming a line; nothing else (no crash, no other exception, no sanitizer report).
 // Built and run by tools/sanitize (clang++-14 -fsanitize=fuzzer,address,undefined).
 #include <diagnose/csv.h>

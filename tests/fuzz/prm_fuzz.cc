@@ -1,4 +1,4 @@
-// libFuzzer target for the case-file reader (issue 9): any .prm text is either a valid case or an
+// libFuzzer target for the case-file reader: any .prm text is either a valid case or an
 // InputError of one line; nothing else (no crash, no other exception, no sanitizer report).
 // The first line of the input, when it starts with "--set ", is used as one override instead.
 // Built and run by tools/sanitize (clang++-14 -fsanitize=fuzzer,address,undefined).

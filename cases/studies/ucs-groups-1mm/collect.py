@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Collects the ten 1 mm UCS runs (one `cosim run` per group, see README.md next to this file)
-into study.csv, with the columns of `cosim study`, and copies each run's history.csv into
-<folder>/ here so that tools/plot_study.py can draw the curves.
+into docs/results/studies/ucs-groups-1mm/study.csv, with the columns of `cosim study`, and copies
+each run's history.csv into <folder>/ there so that tools/plot_study.py can draw the curves.
 
 usage: collect.py RUN_DIR_PATTERN   e.g. collect.py '/work/runs/ucs1mm-{group}'
 The fitted UCS of each group (the reference) is read from cases/data/table3_fitted_parameters.csv.
@@ -12,7 +12,7 @@ import os
 import shutil
 import sys
 
-# M1 at 1 mm was run in session 3 (cases/ucs/README.md: `/usr/bin/time -v cosim run
+# M1 at 1 mm was run on its own (cases/ucs/README.md: `/usr/bin/time -v cosim run
 # cases/ucs/ucs.prm --set "SPH/Particle spacing=0.001"`, two idle cores); its run folder was not
 # kept, so its row is the summary recorded then, without a curve.
 RECORDED = {"M1": {"test": "UCS", "peak_stress_MPa": 282.83, "youngs_modulus_GPa": 97.37,
@@ -25,6 +25,7 @@ RECORDED = {"M1": {"test": "UCS", "peak_stress_MPa": 282.83, "youngs_modulus_GPa
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.abspath(os.path.join(here, "..", "..", ".."))
+out = os.path.join(root, "docs", "results", "studies", "ucs-groups-1mm")
 
 
 def table3():
@@ -55,11 +56,11 @@ def main(argv):
         if os.path.exists(os.path.join(run, "summary.json")):
             with open(os.path.join(run, "summary.json")) as f:
                 s = json.load(f)
-            os.makedirs(os.path.join(here, folder), exist_ok=True)
-            shutil.copy(os.path.join(run, "history.csv"), os.path.join(here, folder, "history.csv"))
+            os.makedirs(os.path.join(out, folder), exist_ok=True)
+            shutil.copy(os.path.join(run, "history.csv"), os.path.join(out, folder, "history.csv"))
         else:
             s = RECORDED[group]  # no curve: plot_study.py draws the runs whose history.csv is here
-            print("%s: the recorded session-3 summary (no run folder)" % group)
+            print("%s: the recorded summary (no run folder)" % group)
         err = 100.0 * (s["peak_stress_MPa"] / reference[group] - 1.0)
         errors.append(err)
         rows.append([folder, group, s["test"], "%.6g" % s["peak_stress_MPa"], reference[group],
@@ -70,7 +71,7 @@ def main(argv):
                      "%.3g" % s["max_kinetic_to_internal_energy"],
                      "%.3g" % s["max_force_imbalance"], str(s["quasi_static"]).lower(),
                      s["stop_reason"], status])
-    with open(os.path.join(here, "study.csv"), "w", newline="") as f:
+    with open(os.path.join(out, "study.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(columns)
         w.writerows(rows)

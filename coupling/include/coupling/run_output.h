@@ -56,7 +56,7 @@ namespace coupling
     std::vector<double> von_mises;        ///< per cell [Pa]
   };
 
-  /// Results of one run, as summary.json holds them (design.md).
+  /// Results of one run, as summary.json holds them (docs/design.md).
   struct Summary
   {
     std::string test;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `cosim diagnose`: the discrepancy study on measured data (design.md, "Measured data").
+/// `cosim diagnose`: the discrepancy study on measured data (docs/design.md, "Measured data").
 /// Readers of the data folder, the material-point surrogate with its candidate extensions, the
 /// TAO fit, the evidence (BIC, held-out error) and the outputs. Units inside: MPa, mm, kN, s;
 /// stresses compression-positive as the data files write them (the rock models in sph/ are
@@ -58,7 +58,7 @@ namespace diagnose
   /// and line of the first bad row; throws when the folder holds none of the three.
   Data read_data(const std::string &folder);
 
-  /// The fixed effect names (design.md), `none` excluded.
+  /// The fixed effect names (docs/design.md), `none` excluded.
   const std::vector<std::string> &effect_names();
 
   /// Options of one study.

@@ -3,7 +3,7 @@
 /// Particle lattices for the laboratory specimens. Particles sit at the cell centres of a lattice
 /// of spacing dx; their volumes are scaled so that they sum to the true body volume. Particles
 /// are emitted in the Morton (Z-order) curve order of their cells, which the solver keeps:
-/// neighbours in space are close in memory at every body size (issue 8's linear scaling). The loading axis is the last coordinate (z in 3-D,
+/// neighbours in space are close in memory at every body size (linear scaling in N). The loading axis is the last coordinate (z in 3-D,
 /// y in 2-D, where "z" below means the last coordinate).
 
 #include <sph/types.h>
