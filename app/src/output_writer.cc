@@ -2,6 +2,7 @@
 #include <app/paths.h>
 
 #include <hdf5.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
@@ -32,79 +34,153 @@ namespace app
       return buffer;
     }
 
-    std::string quoted(const std::string &s)
-    {
-      std::string out = "\"";
-      for (const char ch : s)
-      {
-        if (ch == '"' || ch == '\\')
-          out += '\\', out += ch;
-        else if (ch == '\n')
-          out += "\\n";
-        else if (static_cast<unsigned char>(ch) < 0x20)
-          out += ' ';
-        else
-          out += ch;
-      }
-      return out + "\"";
-    }
-
     /// The history columns with their value in file units.
     struct Column
     {
       const char *name;
       double (*value)(const HistoryRow &);
+      const char *units; ///< the `units` attribute of /history/<name> in results.h5
     };
 
     const Column columns[] = {
-      {"time_s", [](const HistoryRow &r) { return r.time; }},
-      {"displacement_mm", [](const HistoryRow &r) { return r.displacement * 1e3; }},
-      {"force_kN", [](const HistoryRow &r) { return r.force * 1e-3; }},
-      {"force_bottom_kN", [](const HistoryRow &r) { return r.force_bottom * 1e-3; }},
-      {"stress_MPa", [](const HistoryRow &r) { return r.stress * 1e-6; }},
-      {"strain", [](const HistoryRow &r) { return r.strain; }},
-      {"axial_gauge_strain", [](const HistoryRow &r) { return r.axial_gauge_strain; }},
-      {"radial_strain", [](const HistoryRow &r) { return r.radial_strain; }},
-      {"kinetic_energy_J", [](const HistoryRow &r) { return r.kinetic_energy; }},
-      {"internal_energy_J", [](const HistoryRow &r) { return r.internal_energy; }},
-      {"dissipated_energy_J", [](const HistoryRow &r) { return r.dissipated_energy; }},
-      {"external_work_J", [](const HistoryRow &r) { return r.external_work; }},
-      {"n_failed", [](const HistoryRow &r) { return r.n_failed; }},
-      {"rolling_force_kN", [](const HistoryRow &r) { return r.rolling_force * 1e-3; }},
-      {"side_force_kN", [](const HistoryRow &r) { return r.side_force * 1e-3; }},
+      {"time_s", [](const HistoryRow &r) { return r.time; }, "s"},
+      {"displacement_mm", [](const HistoryRow &r) { return r.displacement * 1e3; }, "mm"},
+      {"force_kN", [](const HistoryRow &r) { return r.force * 1e-3; }, "kN"},
+      {"force_bottom_kN", [](const HistoryRow &r) { return r.force_bottom * 1e-3; }, "kN"},
+      {"stress_MPa", [](const HistoryRow &r) { return r.stress * 1e-6; }, "MPa"},
+      {"strain", [](const HistoryRow &r) { return r.strain; }, "1"},
+      {"axial_gauge_strain", [](const HistoryRow &r) { return r.axial_gauge_strain; }, "1"},
+      {"radial_strain", [](const HistoryRow &r) { return r.radial_strain; }, "1"},
+      {"kinetic_energy_J", [](const HistoryRow &r) { return r.kinetic_energy; }, "J"},
+      {"internal_energy_J", [](const HistoryRow &r) { return r.internal_energy; }, "J"},
+      {"dissipated_energy_J", [](const HistoryRow &r) { return r.dissipated_energy; }, "J"},
+      {"external_work_J", [](const HistoryRow &r) { return r.external_work; }, "J"},
+      {"n_failed", [](const HistoryRow &r) { return r.n_failed; }, "1"},
+      {"rolling_force_kN", [](const HistoryRow &r) { return r.rolling_force * 1e-3; }, "kN"},
+      {"side_force_kN", [](const HistoryRow &r) { return r.side_force * 1e-3; }, "kN"},
     };
   } // namespace
 
-  std::string summary_json(const Summary &s)
+  namespace
   {
-    std::ostringstream o;
-    o << "{\n"
-      << "  \"test\": " << quoted(s.test) << ",\n"
-      << "  \"n_particles\": " << s.n_particles << ",\n"
-      << "  \"n_steps\": " << s.n_steps << ",\n"
-      << "  \"wall_seconds\": " << number(s.wall_seconds) << ",\n"
-      << "  \"peak_stress_MPa\": " << number(s.peak_stress * 1e-6) << ",\n"
-      << "  \"peak_force_kN\": " << number(s.peak_force * 1e-3) << ",\n"
-      << "  \"strain_at_peak\": " << number(s.strain_at_peak) << ",\n"
-      << "  \"youngs_modulus_GPa\": " << number(s.youngs_modulus * 1e-9) << ",\n"
-      << "  \"platen_modulus_GPa\": " << number(s.platen_modulus * 1e-9) << ",\n"
-      << "  \"poissons_ratio\": " << (s.poissons_ratio < 0 ? "null" : number(s.poissons_ratio)) << ",\n"
-      << "  \"max_displacement_mm\": " << number(s.max_displacement * 1e3) << ",\n"
-      << "  \"max_kinetic_to_internal_energy\": " << number(s.max_kinetic_to_internal_energy) << ",\n"
-      << "  \"max_force_imbalance\": " << number(s.max_force_imbalance) << ",\n"
-      << "  \"energy_balance_error\": " << number(s.energy_balance_error) << ",\n"
-      << "  \"max_exchange_imbalance\": " << number(s.max_exchange_imbalance) << ",\n"
-      << "  \"quasi_static\": " << (s.quasi_static ? "true" : "false") << ",\n"
-      << "  \"true_area_mm2\": " << number(s.true_area * 1e6) << ",\n"
-      << "  \"lattice_area_mm2\": " << number(s.lattice_area * 1e6) << ",\n"
-      << "  \"strain_rate_per_s\": " << number(s.strain_rate) << ",\n"
-      << "  \"time_step_s\": " << number(s.time_step) << ",\n";
-    for (const auto &[key, value] : s.extra)
-      o << "  " << quoted(key) << ": " << (std::isfinite(value) ? number(value) : "null") << ",\n";
-    o
-      << "  \"stop_reason\": " << quoted(s.stop_reason) << "\n"
-      << "}\n";
-    return o.str();
+    using Json = nlohmann::ordered_json; // keys in the order written
+
+    /// A finite value rounded to 10 significant digits (what the file needs, without the binary
+    /// noise of a unit conversion: 281.44, not 281.44000000000005); null when not finite.
+    Json value(double v)
+    {
+      if (!std::isfinite(v))
+        return nullptr;
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, "%.10g", v + 0.0); // + 0.0: no "-0"
+      const double rounded = std::strtod(buffer, nullptr);
+      // a whole number is written as one (a count in Summary::extra: 35260, not 35260.0)
+      if (rounded == std::floor(rounded) && std::abs(rounded) < 1e15)
+        return static_cast<long long>(rounded);
+      return rounded;
+    }
+
+    Json text_or_null(const std::string &s) { return s.empty() ? Json(nullptr) : Json(s); }
+
+    /// A scalar as JSON; invalid UTF-8 (a file name in a message) becomes U+FFFD, not an exception.
+    std::string dump(const Json &j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+    /// A value on one line, with ", " and ": " between items (nlohmann's compact form has none).
+    std::string one_line(const Json &j)
+    {
+      std::string out;
+      if (j.is_object())
+      {
+        for (auto it = j.begin(); it != j.end(); ++it)
+          out += (out.empty() ? "{" : ", ") + dump(Json(it.key())) + ": " + one_line(it.value());
+        return out.empty() ? "{}" : out + "}";
+      }
+      if (j.is_array())
+      {
+        for (const auto &item : j)
+          out += (out.empty() ? "[" : ", ") + one_line(item);
+        return out.empty() ? "[]" : out + "]";
+      }
+      return dump(j);
+    }
+
+    /// An object with one top-level key per line, each value on its key's line.
+    std::string document(const Json &j)
+    {
+      std::string out = "{";
+      bool first = true;
+      for (auto it = j.begin(); it != j.end(); ++it, first = false)
+        out += std::string(first ? "\n" : ",\n") + "  " + dump(Json(it.key())) + ": " + one_line(it.value());
+      return out + "\n}\n";
+    }
+  } // namespace
+
+  std::string to_string(const RunStatus status)
+  {
+    switch (status)
+    {
+      case RunStatus::completed:
+        return "completed";
+      case RunStatus::unstable:
+        return "unstable";
+      case RunStatus::interrupted:
+        return "interrupted";
+      case RunStatus::failed:
+        return "failed";
+    }
+    return "failed";
+  }
+
+  std::string summary_json(const Summary &summary) { return summary_json(&summary, RunEnd{}); }
+
+  std::string summary_json(const Summary *s, const RunEnd &end)
+  {
+    Json j;
+    j["schema_version"] = 1;
+    j["status"]         = to_string(end.status);
+    j["cosim_version"]  = version();
+    j["commit"]         = commit();
+    j["message"]        = text_or_null(end.message);
+    // a result of the run: its value with a Summary, else null
+    auto result = [&](const char *key, auto get) { j[key] = s ? Json(get(*s)) : Json(nullptr); };
+    j["test"] = s ? s->test : end.test;
+    result("n_particles", [](const Summary &r) { return r.n_particles; });
+    j["n_steps"]      = s ? Json(s->n_steps) : end.n_steps >= 0 ? Json(end.n_steps) : Json(nullptr);
+    j["wall_seconds"] = s ? value(s->wall_seconds) : end.wall_seconds >= 0 ? value(end.wall_seconds) : Json(nullptr);
+    result("peak_stress_MPa", [](const Summary &r) { return value(r.peak_stress * 1e-6); });
+    result("peak_force_kN", [](const Summary &r) { return value(r.peak_force * 1e-3); });
+    result("strain_at_peak", [](const Summary &r) { return value(r.strain_at_peak); });
+    result("youngs_modulus_GPa", [](const Summary &r) { return value(r.youngs_modulus * 1e-9); });
+    result("platen_modulus_GPa", [](const Summary &r) { return value(r.platen_modulus * 1e-9); });
+    result("poissons_ratio",
+           [](const Summary &r) { return r.poissons_ratio < 0 ? Json(nullptr) : value(r.poissons_ratio); });
+    result("max_displacement_mm", [](const Summary &r) { return value(r.max_displacement * 1e3); });
+    result("max_kinetic_to_internal_energy", [](const Summary &r) { return value(r.max_kinetic_to_internal_energy); });
+    result("max_force_imbalance", [](const Summary &r) { return value(r.max_force_imbalance); });
+    result("energy_balance_error", [](const Summary &r) { return value(r.energy_balance_error); });
+    result("max_exchange_imbalance", [](const Summary &r) { return value(r.max_exchange_imbalance); });
+    result("quasi_static", [](const Summary &r) { return r.quasi_static; });
+    result("true_area_mm2", [](const Summary &r) { return value(r.true_area * 1e6); });
+    result("lattice_area_mm2", [](const Summary &r) { return value(r.lattice_area * 1e6); });
+    result("strain_rate_per_s", [](const Summary &r) { return value(r.strain_rate); });
+    result("time_step_s", [](const Summary &r) { return value(r.time_step); });
+    result("stop_reason", [](const Summary &r) { return text_or_null(r.stop_reason); });
+    j["last_good_state"] = nullptr;
+    if (end.last_good_step >= 0)
+      j["last_good_state"] = Json{{"file", "last_good_state.h5"},
+                                  {"xdmf", "last_good_state.xdmf"},
+                                  {"step", end.last_good_step},
+                                  {"time_s", value(end.last_good_time)}};
+    j["checkpoint"] = text_or_null(end.checkpoint);
+    j["restart"]    = text_or_null(end.restart_command);
+    if (s)
+      for (const auto &[key, v] : s->extra)
+      {
+        if (j.contains(key))
+          throw std::logic_error("Summary::extra '" + key + "' repeats a summary.json key");
+        j[key] = value(v);
+      }
+    return document(j);
   }
 
   const std::vector<std::string> &history_columns()
@@ -159,6 +235,7 @@ namespace app
       std::string group;
       std::size_t n_particles;
       std::vector<MeshInfo> meshes;
+      bool stress_measures = true; ///< has von_mises and mean stress (a copied older file may not)
     };
 
     std::string path;
@@ -181,7 +258,7 @@ namespace app
 
     template <typename T>
     void dataset(hid_t parent, const std::string &name, const std::vector<T> &data, std::size_t n_columns,
-                 hid_t type)
+                 hid_t type, const std::string &units)
     {
       const hsize_t rows = n_columns ? data.size() / n_columns : 0;
       hsize_t dims[2] = {rows, static_cast<hsize_t>(n_columns)};
@@ -194,6 +271,7 @@ namespace app
       }
       if (!data.empty())
         check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "writing " + name);
+      attribute(set, "units", units);
       H5Dclose(set);
       H5Sclose(space);
     }
@@ -206,7 +284,83 @@ namespace app
       H5Aclose(a);
       H5Sclose(space);
     }
+
+    void attribute(hid_t object, const std::string &name, const std::string &value)
+    {
+      // variable-length UTF-8: h5py reads it as str, ParaView and h5dump show it as text
+      const hid_t type = H5Tcopy(H5T_C_S1);
+      H5Tset_size(type, H5T_VARIABLE);
+      H5Tset_cset(type, H5T_CSET_UTF8);
+      const hid_t space = H5Screate(H5S_SCALAR);
+      const hid_t a     = H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+      const char *text  = value.c_str();
+      check(a < 0 ? -1 : H5Awrite(a, type, &text), "writing attribute " + name);
+      H5Aclose(a);
+      H5Sclose(space);
+      H5Tclose(type);
+    }
+
+    /// /particle_vertices/<n> (0..n-1), the Polyvertex connectivity of each particle count used.
+    void write_particle_vertices()
+    {
+      std::set<std::size_t> counts;
+      for (const auto &s : snapshots)
+        if (s.n_particles > 0)
+          counts.insert(s.n_particles);
+      if (counts.empty())
+        return;
+      const hid_t g = H5Lexists(file, "particle_vertices", H5P_DEFAULT) > 0
+                        ? H5Gopen2(file, "particle_vertices", H5P_DEFAULT)
+                        : group(file, "particle_vertices");
+      for (const std::size_t n : counts)
+      {
+        const std::string name = std::to_string(n);
+        if (H5Lexists(g, name.c_str(), H5P_DEFAULT) > 0)
+          continue;
+        std::vector<unsigned int> index(n);
+        for (std::size_t i = 0; i < n; ++i)
+          index[i] = static_cast<unsigned int>(i);
+        dataset(g, name, index, 1, H5T_NATIVE_UINT, "index");
+      }
+      H5Gclose(g);
+    }
   };
+
+  namespace
+  {
+    /// The XDMF Tensor6 order xx,xy,xz,yy,yz,zz of ParticleSnapshot::stress (xx,yy,zz,yz,xz,xy).
+    std::vector<double> stress_in_xdmf_order(const std::vector<double> &stress)
+    {
+      constexpr std::size_t from[6] = {0, 5, 4, 1, 3, 2};
+      std::vector<double> out(stress.size());
+      for (std::size_t i = 0; i + 6 <= stress.size(); i += 6)
+        for (std::size_t c = 0; c < 6; ++c)
+          out[i + c] = stress[i + from[c]];
+      return out;
+    }
+
+    /// Von Mises stress sqrt(3 J2) [Pa] per particle of ParticleSnapshot::stress.
+    std::vector<double> von_mises(const std::vector<double> &stress)
+    {
+      std::vector<double> out(stress.size() / 6);
+      for (std::size_t p = 0; p < out.size(); ++p)
+      {
+        const double *s = &stress[6 * p]; // xx,yy,zz,yz,xz,xy
+        const double d1 = s[0] - s[1], d2 = s[1] - s[2], d3 = s[2] - s[0];
+        out[p] = std::sqrt(0.5 * (d1 * d1 + d2 * d2 + d3 * d3) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+      }
+      return out;
+    }
+
+    /// Mean stress -(xx+yy+zz)/3 [Pa], compression positive, per particle.
+    std::vector<double> mean_stress_compression_positive(const std::vector<double> &stress)
+    {
+      std::vector<double> out(stress.size() / 6);
+      for (std::size_t p = 0; p < out.size(); ++p)
+        out[p] = -(stress[6 * p] + stress[6 * p + 1] + stress[6 * p + 2]) / 3.0;
+      return out;
+    }
+  } // namespace
 
   ResultsFile::ResultsFile(const std::string &h5_path)
     : impl_(std::make_unique<Impl>())
@@ -216,6 +370,8 @@ namespace app
     impl_->file = H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (impl_->file < 0)
       throw std::runtime_error(h5_path + ": cannot create the HDF5 file");
+    impl_->attribute(impl_->file, "cosim_version", version());
+    impl_->attribute(impl_->file, "commit", commit());
     H5Gclose(impl_->group(impl_->file, "snapshots"));
   }
 
@@ -251,12 +407,22 @@ namespace app
     auto filled = [&](const std::vector<double> &v, std::size_t per) {
       return v.empty() ? std::vector<double>(n * per, 0.0) : v;
     };
-    m.dataset(pg, "position", filled(particles.position, 3), 3, H5T_NATIVE_DOUBLE);
-    m.dataset(pg, "velocity", filled(particles.velocity, 3), 3, H5T_NATIVE_DOUBLE);
-    m.dataset(pg, "displacement", filled(particles.displacement, 3), 3, H5T_NATIVE_DOUBLE);
-    m.dataset(pg, "stress", filled(particles.stress, 6), 6, H5T_NATIVE_DOUBLE);
-    m.dataset(pg, "plastic_strain", filled(particles.plastic_strain, 1), 1, H5T_NATIVE_DOUBLE);
-    m.dataset(pg, "damage", filled(particles.damage, 1), 1, H5T_NATIVE_DOUBLE);
+    m.dataset(pg, "position", filled(particles.position, 3), 3, H5T_NATIVE_DOUBLE, "m");
+    m.dataset(pg, "velocity", filled(particles.velocity, 3), 3, H5T_NATIVE_DOUBLE, "m/s");
+    m.dataset(pg, "displacement", filled(particles.displacement, 3), 3, H5T_NATIVE_DOUBLE, "m");
+    const std::vector<double> stress = filled(particles.stress, 6);
+    m.dataset(pg, "stress", stress_in_xdmf_order(stress), 6, H5T_NATIVE_DOUBLE, "Pa");
+    {
+      const hid_t set = H5Dopen2(pg, "stress", H5P_DEFAULT);
+      m.attribute(set, "components", "xx,xy,xz,yy,yz,zz");
+      m.attribute(set, "sign", "tension positive");
+      H5Dclose(set);
+    }
+    m.dataset(pg, "von_mises", von_mises(stress), 1, H5T_NATIVE_DOUBLE, "Pa");
+    m.dataset(pg, "mean_stress_compression_positive", mean_stress_compression_positive(stress), 1,
+              H5T_NATIVE_DOUBLE, "Pa");
+    m.dataset(pg, "plastic_strain", filled(particles.plastic_strain, 1), 1, H5T_NATIVE_DOUBLE, "1");
+    m.dataset(pg, "damage", filled(particles.damage, 1), 1, H5T_NATIVE_DOUBLE, "1");
     H5Gclose(pg);
     const hid_t mg = m.group(g, "meshes");
     for (const auto &mesh : meshes)
@@ -265,12 +431,12 @@ namespace app
       if (mesh.name.empty() || mesh.name.find_first_of("/ <>&\"") != std::string::npos)
         throw std::logic_error("MeshSnapshot::name must be a plain word, got '" + mesh.name + "'");
       const hid_t h = m.group(mg, mesh.name);
-      m.dataset(h, "position", mesh.position, 3, H5T_NATIVE_DOUBLE);
+      m.dataset(h, "position", mesh.position, 3, H5T_NATIVE_DOUBLE, "m");
       m.dataset(h, "displacement", mesh.displacement.empty() ? std::vector<double>(nv * 3, 0.0) : mesh.displacement,
-                3, H5T_NATIVE_DOUBLE);
-      m.dataset(h, "hexahedra", mesh.hexahedra, 8, H5T_NATIVE_UINT);
+                3, H5T_NATIVE_DOUBLE, "m");
+      m.dataset(h, "hexahedra", mesh.hexahedra, 8, H5T_NATIVE_UINT, "index");
       m.dataset(h, "von_mises", mesh.von_mises.empty() ? std::vector<double>(nc, 0.0) : mesh.von_mises, 1,
-                H5T_NATIVE_DOUBLE);
+                H5T_NATIVE_DOUBLE, "Pa");
       H5Gclose(h);
       info.meshes.push_back({mesh.name, nv, nc});
     }
@@ -330,6 +496,7 @@ namespace app
         }
       if (g >= 0)
         H5Gclose(g);
+      info.stress_measures = H5Lexists(old, (std::string(from) + "/particles/von_mises").c_str(), H5P_DEFAULT) > 0;
       if (H5Ocopy(old, from, m.file, to, H5P_DEFAULT, H5P_DEFAULT) < 0)
         break;
       m.snapshots.push_back(std::move(info));
@@ -349,7 +516,7 @@ namespace app
       v.reserve(rows.size());
       for (const auto &r : rows)
         v.push_back(c.value(r));
-      m.dataset(g, c.name, v, 1, H5T_NATIVE_DOUBLE);
+      m.dataset(g, c.name, v, 1, H5T_NATIVE_DOUBLE, c.units);
     }
     H5Gclose(g);
   }
@@ -359,6 +526,7 @@ namespace app
     Impl &m = *impl_;
     if (m.file >= 0)
     {
+      m.write_particle_vertices();
       Impl::check(H5Fclose(m.file), "closing " + m.path);
       m.file = -1;
     }
@@ -385,14 +553,21 @@ namespace app
         const std::string p = s.group + "/particles/";
         const std::size_t n = s.n_particles;
         x << "  <Grid Name=\"rock\" GridType=\"Uniform\">\n"
-          << "   <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n"
+          << "   <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">"
+          << item("/particle_vertices/" + std::to_string(n), n, 1, "UInt", 4) << "</Topology>\n"
           << "   <Geometry GeometryType=\"XYZ\">" << item(p + "position", n, 3) << "</Geometry>\n"
           << "   <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item(p + "velocity", n, 3)
           << "</Attribute>\n"
           << "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"
           << item(p + "displacement", n, 3) << "</Attribute>\n"
-          << "   <Attribute Name=\"stress\" AttributeType=\"Tensor6\" Center=\"Node\">" << item(p + "stress", n, 6)
-          << "</Attribute>\n"
+          << "   <Attribute Name=\"stress_tension_positive\" AttributeType=\"Tensor6\" Center=\"Node\">"
+          << item(p + "stress", n, 6) << "</Attribute>\n";
+        if (s.stress_measures)
+          x << "   <Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Node\">" << item(p + "von_mises", n, 1)
+            << "</Attribute>\n"
+            << "   <Attribute Name=\"mean_stress_compression_positive\" AttributeType=\"Scalar\" Center=\"Node\">"
+            << item(p + "mean_stress_compression_positive", n, 1) << "</Attribute>\n";
+        x
           << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
           << item(p + "plastic_strain", n, 1) << "</Attribute>\n"
           << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">" << item(p + "damage", n, 1)
@@ -489,9 +664,30 @@ namespace app
     return reason;
   }
 
-  std::string plot_curve(const std::string &history_csv, const std::string &test,
-                         const std::string &png)
+  std::vector<std::string> curve_label_arguments(const CurveLabels &labels)
   {
-    return run_plot_script("plot_curve.py", {history_csv, test, png}, png);
+    std::vector<std::string> args;
+    auto add = [&](const char *option, double v) {
+      if (v > 0 && std::isfinite(v))
+        args.insert(args.end(), {option, number(v)});
+    };
+    if (!labels.group.empty())
+      args.insert(args.end(), {"--group", labels.group});
+    add("--spacing-mm", labels.particle_spacing * 1e3);
+    add("--ucs-MPa", labels.measured_ucs * 1e-6);
+    add("--E-GPa", labels.measured_youngs_modulus * 1e-9);
+    add("--bts-MPa", labels.measured_bts * 1e-6);
+    if (!labels.source.empty())
+      args.insert(args.end(), {"--source", labels.source});
+    return args;
+  }
+
+  std::string plot_curve(const std::string &history_csv, const std::string &test, const std::string &png,
+                         const CurveLabels &labels)
+  {
+    std::vector<std::string> args = {history_csv, test, png};
+    const std::vector<std::string> more = curve_label_arguments(labels);
+    args.insert(args.end(), more.begin(), more.end());
+    return run_plot_script("plot_curve.py", args, png);
   }
 } // namespace app

@@ -3,8 +3,10 @@
 #include <app/cli.h>
 #include <app/output_writer.h>
 #include <app/progress.h>
-#include <coupling/run_case.h>
+#include <app/paths.h>
 #include <app/run_command.h>
+#include <coupling/run_case.h>
+#include <diagnose/material_table.h>
 
 #include <chrono>
 #include <csignal>
@@ -67,23 +69,61 @@ namespace app
       struct sigaction old_int_ = {}, old_term_ = {};
     };
 
-    std::string json_string(const std::string &s)
+    /// The folder of measured-data tables a case read: Rock/Data directory in its used
+    /// parameters (written absolute), else the shipped one.
+    std::string data_directory_of(const CaseFile &case_file)
     {
-      std::string out = "\"";
-      for (const char c : s)
+      std::istringstream in(case_file.used_parameters);
+      std::string line;
+      bool rock = false;
+      while (std::getline(in, line))
       {
-        if (c == '"' || c == '\\')
-          out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20)
+        const auto begin = line.find_first_not_of(' ');
+        const std::string l = begin == std::string::npos ? "" : line.substr(begin);
+        if (l.rfind("subsection ", 0) == 0)
+          rock = l == "subsection Rock";
+        else if (rock && l.rfind("set Data directory", 0) == 0 && l.find('=') != std::string::npos)
         {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned char>(c));
-          out += buf;
+          std::string value = l.substr(l.find('=') + 1);
+          value = value.substr(0, value.find(" #"));
+          const auto first = value.find_first_not_of(' '), last = value.find_last_not_of(' ');
+          if (first != std::string::npos)
+            return value.substr(first, last - first + 1);
         }
-        else
-          out += c;
       }
-      return out + "\"";
+      return data_directory().string();
+    }
+
+    /// What curve.png shows beside the curve: the rock group, the particle spacing and the
+    /// group's measured values (Table 3) that the test measures: UCS and E for UCS, BTS for BTS.
+    CurveLabels curve_labels(const CaseFile &case_file)
+    {
+      const coupling::CaseParameters &p = case_file.parameters;
+      CurveLabels labels;
+      labels.group            = p.rock.group;
+      labels.particle_spacing = p.sph.spacing;
+      if (p.test != "UCS" && p.test != "BTS")
+        return labels;
+      try
+      {
+        const diagnose::MaterialTable table = diagnose::MaterialTable::read(data_directory_of(case_file));
+        if (const diagnose::MaterialGroup *group = table.lookup(p.rock.group))
+        {
+          labels.source = "Table 3";
+          if (p.test == "UCS")
+          {
+            labels.measured_ucs            = group->ucs;
+            labels.measured_youngs_modulus = group->youngs_modulus;
+          }
+          else
+            labels.measured_bts = group->bts;
+        }
+      }
+      catch (const std::exception &)
+      {
+        // the case was read from these tables, so this does not happen; the plot goes without
+      }
+      return labels;
     }
 
     /// Keeps the history in memory, streams snapshots into results.h5, shows progress, writes
@@ -331,16 +371,15 @@ namespace app
       RecordingObserver observer(results, progress, staging);
       const StopSignals stop_signals;
       const auto start = std::chrono::steady_clock::now();
-      auto write_all = [&](const Summary *summary) {
-        if (summary)
-          write_text_file((staging / "summary.json").string(), summary_json(*summary));
+      auto write_all = [&](const Summary *summary, const RunEnd &end) {
+        write_text_file((staging / "summary.json").string(), summary_json(summary, end));
         write_history_csv((staging / "history.csv").string(), observer.rows);
         results.write_history(observer.rows);
         results.close((staging / "results.xdmf").string());
         if (!observer.rows.empty())
         {
           const std::string why = plot_curve((staging / "history.csv").string(), case_file.parameters.test,
-                                             (staging / "curve.png").string());
+                                             (staging / "curve.png").string(), curve_labels(case_file));
           if (!why.empty())
             std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
         }
@@ -361,7 +400,7 @@ namespace app
         progress.finish();
         if (summary.wall_seconds <= 0)
           summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        write_all(&summary);
+        write_all(&summary, RunEnd{});
         publish(staging, target);
         if (result)
           *result = summary;
@@ -383,18 +422,15 @@ namespace app
       catch (const InstabilityError &e)
       {
         progress.finish();
-        write_all(nullptr);
+        RunEnd end;
+        end.status         = RunStatus::unstable;
+        end.message        = e.what();
+        end.test           = case_file.parameters.test;
+        end.wall_seconds   = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        end.last_good_step = observer.good_step;
+        end.last_good_time = observer.good_time;
+        write_all(nullptr, end);
         write_text_file((staging / "failure.txt").string(), std::string(e.what()) + "\n");
-        std::ostringstream json;
-        json << "{\n  \"status\": \"unstable\",\n  \"message\": " << json_string(e.what())
-             << ",\n  \"last_good_state\": ";
-        if (observer.good_step >= 0)
-          json << "{\"file\": \"last_good_state.h5\", \"xdmf\": \"last_good_state.xdmf\", "
-               << "\"step\": " << observer.good_step << ", \"time_s\": " << observer.good_time << "}";
-        else
-          json << "null";
-        json << "\n}\n";
-        write_text_file((staging / "summary.json").string(), json.str());
         fs::path failed = target;
         failed += ".failed";
         if (fs::exists(failed))
@@ -411,13 +447,15 @@ namespace app
       catch (const RunInterrupted &e)
       {
         progress.finish();
-        write_all(nullptr);
-        std::ostringstream json;
-        json << "{\n  \"status\": \"interrupted\",\n  \"message\": " << json_string(e.what())
-             << ",\n  \"n_steps\": " << observer.checkpoint_step
-             << ",\n  \"checkpoint\": \"checkpoint.h5\",\n  \"restart\": "
-             << json_string("cosim run --restart " + target.string()) << "\n}\n";
-        write_text_file((staging / "summary.json").string(), json.str());
+        RunEnd end;
+        end.status          = RunStatus::interrupted;
+        end.message         = e.what();
+        end.test            = case_file.parameters.test;
+        end.wall_seconds    = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        end.n_steps         = observer.checkpoint_step;
+        end.checkpoint      = "checkpoint.h5";
+        end.restart_command = "cosim run --restart " + target.string();
+        write_all(nullptr, end);
         publish(staging, target);
         std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
                      e.what(), (target / "checkpoint.h5").c_str(), target.c_str());

@@ -3,6 +3,8 @@
 #include <diagnose/diagnose.h>
 #include <coupling/run_case.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,49 +20,42 @@ namespace diagnose
   {
     namespace fs = std::filesystem;
 
-    std::string quote(const std::string &s)
-    {
-      std::string o = "\"";
-      for (char c : s)
-      {
-        if (c == '"' || c == '\\')
-          o += '\\';
-        o += c;
-      }
-      return o + "\"";
-    }
+    using Json = nlohmann::ordered_json; // keys in the order written
 
-    std::string num(const double v)
+    /// A value to 6 significant digits (the precision the diagnosis carries); null when not finite.
+    Json num(const double v)
     {
       if (!std::isfinite(v))
-        return "null";
-      std::ostringstream o;
-      o << std::setprecision(6) << v;
-      return o.str();
+        return nullptr;
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.6g", v + 0.0); // + 0.0: no "-0"
+      return std::strtod(buffer, nullptr);
     }
 
-    std::string values_json(const std::vector<FittedValue> &v, const std::string &indent)
+    Json values_json(const std::vector<FittedValue> &v)
     {
-      std::string o = "[";
-      for (std::size_t i = 0; i < v.size(); ++i)
-        o += (i ? ",\n" : "\n") + indent + "  {\"name\": " + quote(v[i].name) +
-             ", \"unit\": " + quote(v[i].unit) + ", \"value\": " + num(v[i].value) +
-             ", \"standard_error\": " + num(v[i].standard_error) + "}";
-      return o + (v.empty() ? "]" : "\n" + indent + "]");
+      Json out = Json::array();
+      for (const auto &value : v)
+        out.push_back({{"name", value.name},
+                       {"unit", value.unit},
+                       {"value", num(value.value)},
+                       {"standard_error", num(value.standard_error)}});
+      return out;
     }
 
-    std::string error_json(const ModelError &e)
+    Json error_json(const ModelError &e)
     {
-      std::string o = "{\"model\": " + quote(e.model) + ", \"error_fit\": " + num(e.fit) +
-                      ", \"error_heldout\": " + num(e.heldout) +
-                      ", \"strength_rms_MPa\": " + num(e.strength_rms_MPa) +
-                      ", \"heldout_strength_rms_MPa\": " + num(e.heldout_strength_rms_MPa) +
-                      ", \"curve_rms_mm\": " + num(e.curve_rms_mm) +
-                      ", \"heldout_curve_rms_mm\": " + num(e.heldout_curve_rms_mm) +
-                      ", \"heldout_discrepancy\": " + num(e.discrepancy);
+      Json o = {{"model", e.model},
+                {"error_fit", num(e.fit)},
+                {"error_heldout", num(e.heldout)},
+                {"strength_rms_MPa", num(e.strength_rms_MPa)},
+                {"heldout_strength_rms_MPa", num(e.heldout_strength_rms_MPa)},
+                {"curve_rms_mm", num(e.curve_rms_mm)},
+                {"heldout_curve_rms_mm", num(e.heldout_curve_rms_mm)},
+                {"heldout_discrepancy", num(e.discrepancy)}};
       for (const auto &[k, v] : e.coupled)
-        o += ", " + quote("coupled_" + k) + ": " + num(v);
-      return o + "}";
+        o["coupled_" + k] = num(v);
+      return o;
     }
 
     std::string fmt(double v, int p = 3)
@@ -172,46 +167,34 @@ namespace diagnose
 
   std::string diagnosis_json(const Diagnosis &d)
   {
-    std::ostringstream o;
-    o << "{\n  \"identified\": [";
-    for (std::size_t i = 0; i < d.identified.size(); ++i)
-      o << (i ? ", " : "") << quote(d.identified[i]);
-    o << "],\n  \"indistinguishable\": [";
-    for (std::size_t i = 0; i < d.indistinguishable.size(); ++i)
-      o << (i ? ", " : "") << quote(d.indistinguishable[i]);
-    o << "],\n  \"candidates\": [";
-    for (std::size_t i = 0; i < d.candidates.size(); ++i)
-    {
-      const auto &c = d.candidates[i];
-      o << (i ? "," : "") << "\n    {\"name\": " << quote(c.name)
-        << ", \"applicable\": " << (c.applicable ? "true" : "false")
-        << ", \"note\": " << quote(c.reason)
-        << ",\n     \"evidence\": {\"delta_bic\": " << num(c.delta_bic)
-        << ", \"delta_bic_vs_baseline\": " << num(c.delta_bic_baseline)
-        << "},\n     \"parameters\": " << values_json(c.parameters, "     ")
-        << ",\n     \"error_before\": " << num(c.error_before)
-        << ", \"error_after\": " << num(c.error_after)
-        << ", \"heldout_error_before\": " << num(c.heldout_before)
-        << ", \"heldout_error_after\": " << num(c.heldout_after) << "}";
-    }
-    o << "\n  ],\n  \"baseline\": " << error_json(d.baseline)
-      << ",\n  \"extended\": " << error_json(d.extended)
-      << ",\n  \"extended_parameters\": " << values_json(d.extended_parameters, "  ")
-      << ",\n  \"gain\": " << num(d.gain) << ",\n  \"heldout_gain\": " << num(d.heldout_gain)
-      << ",\n  \"discrepancy_gain\": " << num(d.discrepancy_gain)
-      << ",\n  \"n_discrepancy\": " << d.n_discrepancy
-      << ",\n  \"coupled_gain\": " << num(d.coupled_gain) << ",\n  \"noise\": {";
-    bool first = true;
+    Json j;
+    j["identified"]        = d.identified;
+    j["indistinguishable"] = d.indistinguishable;
+    j["candidates"]        = Json::array();
+    for (const auto &c : d.candidates)
+      j["candidates"].push_back({{"name", c.name},
+                                 {"applicable", c.applicable},
+                                 {"note", c.reason},
+                                 {"evidence", {{"delta_bic", num(c.delta_bic)}, {"delta_bic_vs_baseline", num(c.delta_bic_baseline)}}},
+                                 {"parameters", values_json(c.parameters)},
+                                 {"error_before", num(c.error_before)},
+                                 {"error_after", num(c.error_after)},
+                                 {"heldout_error_before", num(c.heldout_before)},
+                                 {"heldout_error_after", num(c.heldout_after)}});
+    j["baseline"]            = error_json(d.baseline);
+    j["extended"]            = error_json(d.extended);
+    j["extended_parameters"] = values_json(d.extended_parameters);
+    j["gain"]                = num(d.gain);
+    j["heldout_gain"]        = num(d.heldout_gain);
+    j["discrepancy_gain"]    = num(d.discrepancy_gain);
+    j["n_discrepancy"]       = d.n_discrepancy;
+    j["coupled_gain"]        = num(d.coupled_gain);
+    j["noise"]               = Json::object();
     for (const auto &[k, v] : d.noise)
-    {
-      o << (first ? "" : ", ") << quote(k) << ": " << num(v);
-      first = false;
-    }
-    o << "},\n  \"notes\": [";
-    for (std::size_t i = 0; i < d.notes.size(); ++i)
-      o << (i ? ",\n    " : "\n    ") << quote(d.notes[i]);
-    o << "\n  ]\n}\n";
-    return o.str();
+      j["noise"][k] = num(v);
+    j["notes"] = d.notes;
+    // invalid UTF-8 (a file name in a note) becomes U+FFFD rather than an exception
+    return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
   }
 
   void write_report(const std::filesystem::path &out, const Diagnosis &d, const std::string &data_dir)

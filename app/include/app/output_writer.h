@@ -11,7 +11,43 @@
 
 namespace app
 {
-  /// summary.json text: every Summary field, names as docs/design.md lists them (units in the name).
+  /// How a run ended: summary.json's "status".
+  enum class RunStatus
+  {
+    completed,   ///< ran to its stop criterion; every result key has its value
+    unstable,    ///< stopped by the stability checks; the folder is OUTDIR.failed
+    interrupted, ///< stopped by SIGINT / SIGTERM after writing a checkpoint
+    failed       ///< stopped by another error
+  };
+
+  /// "completed", "unstable", "interrupted" or "failed".
+  std::string to_string(RunStatus status);
+
+  /// What summary.json says beside a completed run's Summary: the outcome and, for a run that did
+  /// not complete (no Summary), what is known of it.
+  struct RunEnd
+  {
+    RunStatus status = RunStatus::completed;
+    std::string message;            ///< why the run stopped early; "" (null) when completed
+    std::string test;               ///< test type, used when there is no Summary
+    double wall_seconds = -1;       ///< [s], used when there is no Summary; < 0: null
+    long n_steps = -1;              ///< steps done, used when there is no Summary; < 0: null
+    long last_good_step = -1;       ///< unstable: step of last_good_state.h5; < 0: none (null)
+    double last_good_time = 0;      ///< unstable: its time [s]
+    std::string checkpoint;         ///< interrupted: the checkpoint file; "" (null) otherwise
+    std::string restart_command;    ///< interrupted: the command that continues it; "" (null) otherwise
+  };
+
+  /// summary.json text (nlohmann-json), one schema for every outcome: `schema_version` (1),
+  /// `status`, `cosim_version`, `commit`, `message`, then every Summary key as docs/design.md
+  /// names it (units in the name; compression positive), then `last_good_state`, `checkpoint`,
+  /// `restart`. Every one of these keys is always present; a key without a value for this
+  /// outcome is null (summary == nullptr: every result key but test, n_steps and wall_seconds).
+  /// A completed run adds its test type's further results (Summary::extra) after the fixed keys.
+  /// Top-level keys one per line, nested values on the key's line.
+  std::string summary_json(const coupling::Summary *summary, const RunEnd &end);
+
+  /// summary.json text of a completed run.
   std::string summary_json(const coupling::Summary &summary);
 
   /// Column names of history.csv, in order.
@@ -23,11 +59,16 @@ namespace app
   /// Writes `text` to `path`; std::runtime_error on failure.
   void write_text_file(const std::string &path, const std::string &text);
 
-  /// results.h5 written as the run goes (HDF5 C API) and its results.xdmf companion.
+  /// results.h5 written as the run goes (HDF5 C API) and its results.xdmf companion (XDMF 3, for
+  /// ParaView). Every dataset has a string attribute `units` ("1": dimensionless; "index":
+  /// connectivity); the root has `cosim_version` and `commit`.
   /// Layout: /history/<column> (1-D, units as in history.csv); /snapshots/NNNNNN with attribute
-  /// time_s, particles/{position,velocity,displacement (n x 3) [m, m/s], stress (n x 6,
-  /// xx,yy,zz,yz,xz,xy, tension + [Pa]), plastic_strain, damage (n)} and meshes/<name>/{position,
-  /// displacement (n x 3), hexahedra (cells x 8, VTK order), von_mises (cells) [Pa]}.
+  /// time_s, particles/{position, velocity, displacement (n x 3) [m, m/s, m];
+  /// stress (n x 6) [Pa], tension positive, components in XDMF's Tensor6 order xx,xy,xz,yy,yz,zz
+  /// (attribute `components`); von_mises (n) [Pa]; mean_stress_compression_positive (n)
+  /// -(xx+yy+zz)/3 [Pa]; plastic_strain, damage (n) [1]} and meshes/<name>/{position,
+  /// displacement (n x 3) [m], hexahedra (cells x 8, VTK order), von_mises (cells) [Pa]};
+  /// /particle_vertices/<n>: 0..n-1, the Polyvertex connectivity of an n-particle snapshot.
   class ResultsFile
   {
   public:
@@ -62,7 +103,22 @@ namespace app
   std::string run_plot_script(const std::string &script_name, const std::vector<std::string> &args,
                               const std::string &png);
 
+  /// What curve.png says beside the curve: the case and the rock group's measured values.
+  struct CurveLabels
+  {
+    std::string group;              ///< rock group, e.g. "M1"; "" = not shown
+    double particle_spacing = 0;    ///< [m]; 0 = not shown
+    double measured_ucs = 0;        ///< the group's measured UCS [Pa]; 0 = none
+    double measured_youngs_modulus = 0; ///< the group's measured E [Pa]; 0 = none
+    double measured_bts = 0;        ///< the group's measured BTS [Pa]; 0 = none
+    std::string source;             ///< where the measured values come from, e.g. "Table 3"
+  };
+
+  /// The script arguments of plot_curve.py for `labels` (--group, --spacing-mm, --ucs-MPa, ...).
+  std::vector<std::string> curve_label_arguments(const CurveLabels &labels);
+
   /// Runs tools/plot_curve.py on history.csv to make curve.png. Returns "" on success, else a
   /// one-line reason (python3 or matplotlib missing, script failed).
-  std::string plot_curve(const std::string &history_csv, const std::string &test, const std::string &png);
+  std::string plot_curve(const std::string &history_csv, const std::string &test, const std::string &png,
+                         const CurveLabels &labels = {});
 } // namespace app
