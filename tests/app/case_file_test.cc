@@ -79,6 +79,7 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
 {
   const auto b = app::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
   EXPECT_EQ(b.test, "BTS");
+  EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
   const auto t = app::read_case_file(source("cases/ctcs/ctcs.prm"), {}).parameters;
   EXPECT_EQ(t.test, "CTCS");

@@ -110,7 +110,7 @@ namespace coupling
   /// One case: the test, the specimen, and the parts.
   struct CaseParameters
   {
-    std::string name = "ucs";        ///< case name (default output folder results/<name>)
+    std::string name;                ///< case name; empty = the case file's stem (results/<name>)
     std::string test = "UCS";        ///< UCS, BTS, CTCS, indentation or linear-cutting
     double diameter = 0.05;          ///< specimen diameter [m]
     double length = 0.1;             ///< UCS/CTCS: length; BTS: disc thickness [m]
