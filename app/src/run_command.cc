@@ -181,6 +181,7 @@ namespace app
       std::string restart; ///< --restart DIR
       bool force = false;
       bool quiet = false;
+      bool print_parameters = false; ///< --print-parameters: print the default case file, run nothing
     };
 
     RunOptions parse_options(const std::vector<std::string> &args)
@@ -200,16 +201,22 @@ namespace app
           o.force = true;
         else if (a == "--quiet" || a == "-q")
           o.quiet = true;
+        else if (a == "--print-parameters")
+          o.print_parameters = true;
         else if (!a.empty() && a[0] == '-')
           throw InputError("cosim run: unknown option '" + a + "'" +
-                           did_you_mean(a, {"--output", "--set", "--restart", "--force", "--quiet", "--help"}) +
-                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --force, --quiet");
+                           did_you_mean(a, {"--output", "--set", "--restart", "--force", "--quiet", "--print-parameters",
+                                           "--help"}) +
+                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --force, --quiet, "
+                           "--print-parameters");
         else if (o.case_file.empty())
           o.case_file = a;
         else
           throw InputError("cosim run: a second case file '" + a + "' (after '" + o.case_file +
                            "'); run takes one CASE.prm");
       }
+      if (o.print_parameters)
+        return o;
       if (!o.restart.empty())
       {
         if (!o.case_file.empty() || !o.overrides.empty())
@@ -286,6 +293,7 @@ namespace app
   {
     return "usage: cosim run CASE.prm [-o OUTDIR] [--set \"Section/Key=value\" ...] [--force] [--quiet]\n"
            "       cosim run --restart OUTDIR [-o NEWDIR] [--quiet]\n"
+           "       cosim run --print-parameters > CASE.prm\n"
            "\n"
            "Runs one coupled UCS / BTS / CTCS case and writes into OUTDIR (default results/<case stem>):\n"
            "  summary.json         peak stress and force, modulus, Poisson's ratio, energy checks\n"
@@ -301,6 +309,8 @@ namespace app
            "  --restart OUTDIR     continue an interrupted run from OUTDIR/checkpoint.h5 with\n"
            "                       OUTDIR/used_parameters.prm (into OUTDIR unless -o)\n"
            "  -q, --quiet          no progress display\n"
+           "  --print-parameters   print a complete case file of the defaults (every key, its default\n"
+           "                       and documentation) to stdout and exit\n"
            "\n"
            "The results are written into a hidden sibling folder and renamed to OUTDIR at the end, so a\n"
            "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
@@ -313,7 +323,8 @@ namespace app
            "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run\n"
            "(OUTDIR.failed with last_good_state.h5), 4 interrupted (checkpoint written), 1 other failure.\n"
            "\n"
-           "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end),\n"
+           "Case-file keys (deal.II ParameterHandler syntax: subsection S / set K = value / end; a\n"
+           "CASE.json holds {\"Section\": {\"Key\": \"value\"}} instead), "
            "SI units, [default]:\n" +
            case_file_keys_help();
   }
@@ -321,6 +332,11 @@ namespace app
   int run_main(const std::vector<std::string> &args)
   {
     RunOptions options = parse_options(args);
+    if (options.print_parameters)
+    {
+      std::fputs(default_case_file().c_str(), stdout);
+      return 0;
+    }
     const CaseFile case_file = read_case_file(options.case_file, options.overrides);
     if (!options.restart.empty() && options.output.empty())
       options.output = options.restart; // a restart continues into its own folder

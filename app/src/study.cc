@@ -224,7 +224,7 @@ namespace app
     StudyReference reference_of(const CaseParameters &p, const MaterialGroup *group)
     {
       StudyReference r;
-      const double c = p.rock.cohesion, phi = p.rock.friction_angle;
+      const double c = p.rock.cohesion, phi = p.rock.friction_angle * 180.0 / pi; // [deg]
       const double s = std::sin(phi * pi / 180.0), k = std::cos(phi * pi / 180.0);
       if (p.test == "BTS")
       {
@@ -369,7 +369,7 @@ namespace app
       run.folder    = prefix + folder;
       run.case_file = read_case_file(options.case_file, overrides);
       run.reference =
-        reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock.group));
+        reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock_case.group));
       runs.push_back(std::move(run));
       more = false;
       for (std::size_t d = dims.size(); d-- > 0;)

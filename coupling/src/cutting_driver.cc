@@ -137,7 +137,7 @@ namespace coupling
     {
       throw InputError(e.what());
     }
-    apply_strength_scatter(*body_, prm_.rock, dx);
+    apply_strength_scatter(*body_, prm_.rock_case, dx);
     volume0_ = lattice.volumes;
     contact_radius_ = 0.5 * lattice.cell_size[2];
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a
@@ -586,9 +586,9 @@ namespace coupling
     x.push_back({"n_sph_pairs", double(body_->n_pairs())}); // at the end (tools/bench)
 
     // independent estimates (closed forms) for the same geometry and rock
-    const RockParameters &rock = prm_.rock;
-    const double ucs           = rock.ucs > 0 ? rock.ucs : model_ucs(rock);
-    const double bts           = rock.bts > 0 ? rock.bts : model_tensile_strength(rock);
+    const sph::MaterialParameters &rock = prm_.rock;
+    const double ucs = prm_.rock_case.ucs > 0 ? prm_.rock_case.ucs : model_ucs(rock);
+    const double bts = prm_.rock_case.bts > 0 ? prm_.rock_case.bts : model_tensile_strength(rock);
     x.push_back({"rock_ucs_MPa", ucs * 1e-6});
     x.push_back({"rock_bts_MPa", bts * 1e-6});
     if (cutting_)

@@ -54,21 +54,13 @@ namespace coupling
 
   fem::Parameters fem_parameters(const PlatenParameters &platens, const double default_element_size)
   {
-    fem::Parameters fp;
-    if (platens.model == "rigid")
-      fp.model = fem::SteelModel::rigid;
-    else if (platens.model == "elastic")
-      fp.model = fem::SteelModel::elastic;
-    else
-      throw InputError("Platens/Model: unknown model '" + platens.model + "'; accepted: rigid, elastic");
-    fp.youngs_modulus = platens.youngs_modulus;
-    fp.poissons_ratio = platens.poissons_ratio;
-    fp.density        = platens.density;
-    fp.element_size   = platens.element_size > 0 ? platens.element_size : default_element_size;
+    fem::Parameters fp = platens.steel;
+    if (platens.element_size_from_spacing)
+      fp.element_size = default_element_size;
     return fp;
   }
 
-  void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, const double spacing)
+  void apply_strength_scatter(sph::Body<3> &body, const RockCase &rock, const double spacing)
   {
     if (rock.strength_scatter <= 0)
       return;

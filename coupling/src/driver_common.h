@@ -34,7 +34,7 @@ namespace coupling
 
   /// Heterogeneous rock (Rock/Strength scatter > 0): gives every particle of `body`, built on a
   /// lattice of spacing `spacing`, its Weibull strength factor; nothing for a homogeneous rock.
-  void apply_strength_scatter(sph::Body<3> &body, const RockParameters &rock, double spacing);
+  void apply_strength_scatter(sph::Body<3> &body, const RockCase &rock, double spacing);
 
   /// Kinetic energy of the body's motion other than a homogeneous deformation: of v - (a + B x),
   /// with a, B the mass-weighted least-squares affine fit of the velocity field [J]. A specimen
@@ -43,8 +43,7 @@ namespace coupling
   double non_affine_kinetic_energy(const sph::Body<3> &body);
 
   /// The FEM body (platen or cutter) of Platens/*: model, steel, and the element size, which
-  /// is Platens/Element size where set, else `default_element_size` [m]. Throws InputError for an
-  /// unknown Platens/Model.
+  /// is Platens/Element size where set, else `default_element_size` [m].
   fem::Parameters fem_parameters(const PlatenParameters &platens, double default_element_size);
 
   /// The deformed mesh of one platen or cutter, under the given name.

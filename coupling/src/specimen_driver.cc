@@ -26,82 +26,16 @@ namespace coupling
   namespace
   {
     constexpr double pi = 3.14159265358979323846;
-    double deg(double a)
+    sph::MaterialParameters material(const sph::MaterialParameters &r)
     {
-      return a * pi / 180.0;
+      return r;
     }
 
-    sph::RockModel rock_model(const std::string &name)
+    sph::Parameters numerics(const sph::Parameters &s)
     {
-      if (name == "elastic")
-        return sph::RockModel::elastic;
-      if (name == "mohr-coulomb")
-        return sph::RockModel::mohr_coulomb;
-      if (name == "mohr-coulomb-cutoff")
-        return sph::RockModel::mohr_coulomb_cutoff;
-      if (name == "hoek-brown")
-        return sph::RockModel::hoek_brown;
-      throw InputError("Rock/Model: unknown model '" + name +
-                       "'; accepted: elastic, mohr-coulomb, mohr-coulomb-cutoff, hoek-brown");
-    }
-
-    sph::MaterialParameters material(const RockParameters &r)
-    {
-      sph::MaterialParameters m;
-      m.model             = rock_model(r.model);
-      m.density           = r.density;
-      m.youngs_modulus    = r.youngs_modulus;
-      m.poissons_ratio    = r.poissons_ratio;
-      m.cohesion          = r.cohesion;
-      m.friction_angle    = deg(r.friction_angle);
-      m.dilation_angle    = deg(r.dilation_angle);
-      m.tensile_strength  = r.tensile_strength;
-      m.hb_sigma_ci       = r.ucs;
-      m.hb_mb             = r.hoek_brown_mi;
-      m.softening_strain  = r.softening_strain;
-      m.residual_fraction = r.residual_fraction;
-      m.residual_friction_angle =
-        r.residual_friction_angle < 0 ? -1.0 : deg(r.residual_friction_angle);
-      return m;
-    }
-
-    sph::Parameters numerics(const SphParameters &s)
-    {
-      sph::Parameters p;
-      p.spacing = s.spacing;
-      switch (s.form)
-      {
-        case 0:
-          p.form = sph::Formulation::updated_lagrangian;
-          break;
-        case 1:
-          p.form = sph::Formulation::updated_lagrangian_corrected;
-          break;
-        case 7:
-          p.form = sph::Formulation::total_lagrangian;
-          break;
-        case 8:
-          p.form = sph::Formulation::total_lagrangian_corrected;
-          break;
-        default:
-          throw InputError("SPH/FORM: " + std::to_string(s.form) + " is not one of 0, 1, 7, 8");
-      }
-      p.cslh = s.cslh;
+      sph::Parameters p = s;
       // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
       p.tssfac = std::min(s.tssfac, 1.0);
-      if (s.kernel == "cubic")
-        p.kernel = sph::KernelType::cubic_spline;
-      else if (s.kernel == "wendland")
-        p.kernel = sph::KernelType::wendland_c2;
-      else
-        throw InputError("SPH/Kernel: unknown kernel '" + s.kernel +
-                         "'; accepted: cubic, wendland");
-      p.evolve_h  = s.evolve_smoothing_length;
-      p.av_alpha  = s.av_alpha;
-      p.av_beta   = s.av_beta;
-      p.hourglass = s.hourglass;
-      p.n_threads = s.n_threads;
-      p.single_precision = s.single_precision;
       return p;
     }
 
@@ -117,35 +51,35 @@ namespace coupling
     }
   } // namespace
 
-  sph::MaterialParameters sph_material(const RockParameters &rock)
+  sph::MaterialParameters sph_material(const sph::MaterialParameters &rock)
   {
     return material(rock);
   }
 
-  sph::Parameters sph_numerics(const SphParameters &sph)
+  sph::Parameters sph_numerics(const sph::Parameters &sph)
   {
     return numerics(sph);
   }
 
-  double model_ucs(const RockParameters &r)
+  double model_ucs(const sph::MaterialParameters &r)
   {
-    if (r.model == "elastic")
+    if (r.model == sph::RockModel::elastic)
       return 0.0;
-    if (r.model == "hoek-brown")
-      return r.ucs; // s = 1: sigma_1 = sigma_ci at sigma_3 = 0
-    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    if (r.model == sph::RockModel::hoek_brown)
+      return r.hb_sigma_ci; // s = 1: sigma_1 = sigma_ci at sigma_3 = 0
+    const double s = std::sin(r.friction_angle), c = std::cos(r.friction_angle);
     return 2.0 * r.cohesion * c / (1.0 - s);
   }
 
-  double model_tensile_strength(const RockParameters &r)
+  double model_tensile_strength(const sph::MaterialParameters &r)
   {
-    if (r.model == "elastic")
+    if (r.model == sph::RockModel::elastic)
       return 0.0;
-    if (r.model == "hoek-brown")
-      return r.hoek_brown_mi > 0 ? r.ucs / r.hoek_brown_mi : 0.0;
-    const double s = std::sin(deg(r.friction_angle)), c = std::cos(deg(r.friction_angle));
+    if (r.model == sph::RockModel::hoek_brown)
+      return r.hb_mb > 0 ? r.hb_sigma_ci / r.hb_mb : 0.0;
+    const double s = std::sin(r.friction_angle), c = std::cos(r.friction_angle);
     const double mc = 2.0 * r.cohesion * c / (1.0 + s);
-    if (r.model == "mohr-coulomb-cutoff" && r.tensile_strength > 0)
+    if (r.model == sph::RockModel::mohr_coulomb_cutoff && r.tensile_strength > 0)
       return std::min(mc, r.tensile_strength);
     return mc;
   }
@@ -154,13 +88,13 @@ namespace coupling
   {
     LoadingPlan plan;
     const bool bts          = p.test == "BTS";
-    const RockParameters &r = p.rock;
+    const sph::MaterialParameters &r = p.rock;
     plan.reference_length   = bts ? p.diameter : p.length;
     const double bar_speed  = std::sqrt(r.youngs_modulus / r.density);
     plan.transit_time       = plan.reference_length / bar_speed;
     // strain at which the specimen is expected to fail: it sets the rate, not the result
     double eps_f = p.loading.end_strain;
-    if (r.model != "elastic")
+    if (r.model != sph::RockModel::elastic)
     {
       if (bts)
         // Hondros: the diametral strain at splitting is a few times sigma_t / E for a disc
@@ -169,8 +103,8 @@ namespace coupling
         eps_f = 4.0 * model_tensile_strength(r) / r.youngs_modulus;
       else
       {
-        const double sn = std::sin(deg(r.friction_angle));
-        const double q  = r.model == "hoek-brown" ? 1.0 : (1 + sn) / (1 - sn);
+        const double sn = std::sin(r.friction_angle);
+        const double q  = r.model == sph::RockModel::hoek_brown ? 1.0 : (1 + sn) / (1 - sn);
         eps_f           = (model_ucs(r) + (q - 1.0) * p.confining_pressure) / r.youngs_modulus;
       }
       eps_f = std::min(eps_f, p.loading.end_strain);
@@ -185,7 +119,7 @@ namespace coupling
     if (p.test == "CTCS")
       plan.confinement_time = 10.0 * plan.transit_time;
     plan.planned_strain =
-      r.model == "elastic" ? p.loading.end_strain : std::min(p.loading.end_strain, 1.5 * eps_f);
+      r.model == sph::RockModel::elastic ? p.loading.end_strain : std::min(p.loading.end_strain, 1.5 * eps_f);
     return plan;
   }
 
@@ -228,10 +162,10 @@ namespace coupling
       throw InputError(e.what());
     }
     // heterogeneous rock: a Weibull strength factor per particle (Rock/Strength scatter)
-    apply_strength_scatter(*body_, prm_.rock, dx);
+    apply_strength_scatter(*body_, prm_.rock_case, dx);
     failure_ = std::make_unique<FailureWatch>(*body_, bts_);
     // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
-    if (!bts_ && prm_.sph.loaded_face_correction)
+    if (!bts_ && prm_.loaded_face_correction)
     {
       body_->add_loaded_face(sph::Vector<3>(0, 0, 1));
       body_->add_loaded_face(sph::Vector<3>(0, 0, -1));

@@ -40,13 +40,14 @@ namespace coupling
     double planned_strain          = 0; ///< strain at which the planned path ends [-]
   };
 
-  /// The SPH material and numerics of a case (throws InputError for unknown names).
-  sph::MaterialParameters sph_material(const RockParameters &rock);
-  sph::Parameters sph_numerics(const SphParameters &sph);
+  /// The SPH material and numerics the body takes: the case's own, with TSSFAC capped at 1 (the
+  /// driver scales a larger step itself).
+  sph::MaterialParameters sph_material(const sph::MaterialParameters &rock);
+  sph::Parameters sph_numerics(const sph::Parameters &sph);
 
   /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
-  double model_ucs(const RockParameters &rock);
-  double model_tensile_strength(const RockParameters &rock);
+  double model_ucs(const sph::MaterialParameters &rock);
+  double model_tensile_strength(const sph::MaterialParameters &rock);
 
   /// The loading plan of a case (rate derived from the wave transit time unless given).
   LoadingPlan make_loading_plan(const CaseParameters &p);

@@ -599,11 +599,11 @@ namespace diagnose
     }
     /// Rock of the coupled simulator for a group: baseline (Mohr-Coulomb with the group's c, phi)
     /// or the extended strength model (refitted UCS, Hoek-Brown, tension cut-off).
-    coupling::RockParameters coupled_rock(const Data &data, const GroupBase &g,
+    sph::MaterialParameters coupled_rock(const Data &data, const GroupBase &g,
                                           const Fitted *extended)
     {
-      coupling::RockParameters r;
-      r.model          = "mohr-coulomb";
+      sph::MaterialParameters r = coupling::case_rock();
+      r.model          = sph::RockModel::mohr_coulomb;
       r.youngs_modulus = g.E * 1e6;
       for (const auto &m : data.materials)
         if (m.group == g.group && m.nu)
@@ -613,9 +613,9 @@ namespace diagnose
           r.density = *m.density;
       const auto mc = [&r](double ucs, double phi) {
         const double sp = std::sin(phi * pi / 180), cp = std::cos(phi * pi / 180);
-        r.friction_angle = phi;
+        r.friction_angle = phi * pi / 180;
         r.cohesion       = ucs * 1e6 * (1 - sp) / (2 * cp);
-        r.ucs            = ucs * 1e6;
+        r.hb_sigma_ci    = ucs * 1e6;
       };
       if (extended == nullptr)
       {
@@ -626,17 +626,17 @@ namespace diagnose
       const double ucs = v.count("UCS_" + g.group) ? v.at("UCS_" + g.group) : g.ucs;
       if (extended->effects.count("envelope_curvature"))
       {
-        r.model         = "hoek-brown";
-        r.ucs           = ucs * 1e6;
-        r.hoek_brown_mi = v.at("m_i");
+        r.model         = sph::RockModel::hoek_brown;
+        r.hb_sigma_ci   = ucs * 1e6;
+        r.hb_mb         = v.at("m_i");
       }
       else
         mc(ucs, v.count("phi") ? v.at("phi") : g.phi);
       if (extended->effects.count("tension_cutoff"))
       {
         r.tensile_strength = v.at("T0_ratio") * ucs * 1e6;
-        if (r.model == "mohr-coulomb")
-          r.model = "mohr-coulomb-cutoff";
+        if (r.model == sph::RockModel::mohr_coulomb)
+          r.model = sph::RockModel::mohr_coulomb_cutoff;
       }
       return r;
     }

@@ -11,12 +11,11 @@
 namespace diagnose
 {
   using coupling::CaseParameters;
-  using coupling::RockParameters;
   using coupling::Summary;
   using coupling::RunObserver;
   using coupling::run_case;
 
-  CoupledPeak coupled_peak(const std::string &test, const double s3_MPa, const RockParameters &rock,
+  CoupledPeak coupled_peak(const std::string &test, const double s3_MPa, const sph::MaterialParameters &rock,
                            const double spacing, const double end_strain)
   {
     CaseParameters c;

@@ -114,7 +114,7 @@ namespace diagnose
   /// thick) with `rock` at particle spacing `spacing` [m], stopped at `end_strain` (BTS: d / D)
   /// or 20 % past the peak.
   CoupledPeak coupled_peak(const std::string &test, double s3_MPa,
-                           const coupling::RockParameters &rock, double spacing, double end_strain);
+                           const sph::MaterialParameters &rock, double spacing, double end_strain);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

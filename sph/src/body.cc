@@ -147,7 +147,7 @@ namespace sph
     require(!positions.empty(), "no particles");
 
     n_threads_ = prm_.n_threads > 0 ? prm_.n_threads : omp_get_max_threads();
-    rock_      = rock::make_rock_parameters(material_);
+    rock_      = rock::make_model_constants(material_);
     model_     = rock::make_model(material_.model);
     wave_speed_ = std::sqrt((rock_.K + 4.0 / 3.0 * rock_.G) / material_.density);
 

@@ -2,9 +2,17 @@
 #include <app/case_file.h>
 #include <coupling/run_case.h>
 
+#include "subprocess.h"
+
 #include <gtest/gtest.h>
 
+#include <app/paths.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 namespace
 {
@@ -13,6 +21,30 @@ namespace
   void expect_close(double actual, double expected)
   {
     EXPECT_NEAR(actual, expected, 1e-12 * std::abs(expected));
+  }
+  double radians(double degrees) { return degrees * 3.14159265358979323846 / 180.0; }
+
+  /// A fresh folder for files a test writes.
+  std::filesystem::path scratch(const std::string &name)
+  {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("cosim-case-file-test-" + std::to_string(getpid()) + "-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+  }
+
+  void write(const std::filesystem::path &file, const std::string &text) { std::ofstream(file) << text; }
+
+  /// used_parameters.prm without its comment lines (they name the case file's path).
+  std::string values_of(const std::string &used)
+  {
+    std::istringstream in(used);
+    std::string line, out;
+    while (std::getline(in, line))
+      if (line.rfind("# ", 0) != 0 || line.find("cosim") == std::string::npos)
+        out += line + "\n";
+    return out;
   }
 } // namespace
 
@@ -24,18 +56,20 @@ TEST(CaseFile, UcsCaseReadsTheGroupFromTables3And4)
   EXPECT_EQ(p.name, "ucs");
   expect_close(p.diameter, 0.05);
   expect_close(p.length, 0.1);
-  EXPECT_EQ(p.rock.group, "M1");
+  EXPECT_EQ(p.rock_case.group, "M1");
   expect_close(p.rock.youngs_modulus, 97.07e9); // Table 3
   expect_close(p.rock.poissons_ratio, 0.28);
   expect_close(p.rock.cohesion, 32.99e6); // Table 4
-  expect_close(p.rock.friction_angle, 63.68);
-  expect_close(p.rock.ucs, 282.18e6);
+  expect_close(p.rock.friction_angle, radians(63.68)); // stored in radians
+  expect_close(p.rock_case.ucs, 282.18e6);
+  expect_close(p.rock.hb_sigma_ci, 282.18e6);
   expect_close(p.rock.density, 2900);
   expect_close(p.sph.spacing, 2.5e-3);
-  EXPECT_EQ(p.sph.form, 8);
+  EXPECT_EQ(p.sph.form, sph::Formulation::total_lagrangian_corrected);
   expect_close(p.sph.cslh, 1.2);
   expect_close(p.sph.tssfac, 0.9);
-  EXPECT_EQ(p.platens.model, "rigid");
+  EXPECT_EQ(p.platens.steel.model, fem::SteelModel::rigid);
+  EXPECT_TRUE(p.platens.element_size_from_spacing);
   EXPECT_TRUE(c.warnings.empty());
   EXPECT_NE(c.used_parameters.find("set Group"), std::string::npos);
   EXPECT_NE(c.used_parameters.find("subsection SPH"), std::string::npos);
@@ -45,10 +79,11 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
 {
   const auto b = app::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
   EXPECT_EQ(b.test, "BTS");
+  EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
   const auto t = app::read_case_file(source("cases/ctcs/ctcs.prm"), {}).parameters;
   EXPECT_EQ(t.test, "CTCS");
-  EXPECT_EQ(t.rock.group, "M8");
+  EXPECT_EQ(t.rock_case.group, "M8");
   expect_close(t.confining_pressure, 10e6);
   expect_close(t.rock.cohesion, 28.83e6);
 }
@@ -59,7 +94,7 @@ TEST(CaseFile, MeasuredStrengthUsesTable3)
                                           {"Rock/Strength parameters=measured", "Rock/Group=M9"})
                    .parameters;
   expect_close(p.rock.cohesion, 45.27e6);
-  expect_close(p.rock.friction_angle, 49.18);
+  expect_close(p.rock.friction_angle, radians(49.18));
   expect_close(p.rock.youngs_modulus, 80.65e9);
 }
 
@@ -70,7 +105,7 @@ TEST(CaseFile, ExplicitKeysOverrideTheGroupAndLaterSetWins)
   expect_close(c.parameters.rock.youngs_modulus, 50e9);
   expect_close(c.parameters.rock.poissons_ratio, 0.25); // M4
   expect_close(c.parameters.rock.cohesion, 21.92e6);
-  EXPECT_EQ(c.parameters.sph.form, 7);
+  EXPECT_EQ(c.parameters.sph.form, sph::Formulation::total_lagrangian);
   // used_parameters.prm holds the resolved values, so that it re-runs the same case
   EXPECT_NE(c.used_parameters.find("5e+10"), std::string::npos) << c.used_parameters;
 }
@@ -95,4 +130,125 @@ TEST(CaseFile, ErrorsAreInputErrors)
 {
   EXPECT_THROW(app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/FORM=2"}), coupling::InputError);
   EXPECT_THROW(app::read_case_file("/nonexistent.prm", {}), coupling::InputError);
+}
+
+TEST(CaseFile, AnglesAreWrittenInDegreesAndStoredInRadians)
+{
+  const auto p = app::read_case_file(source("cases/ucs/ucs.prm"),
+                                     {"Rock/Friction angle=50", "Rock/Dilation angle=10",
+                                      "Rock/Residual friction angle=30"})
+                   .parameters;
+  expect_close(p.rock.friction_angle, radians(50));
+  expect_close(p.rock.dilation_angle, radians(10));
+  expect_close(p.rock.residual_friction_angle, radians(30));
+  // left empty: no friction softening
+  EXPECT_LT(app::read_case_file(source("cases/ucs/ucs.prm"), {}).parameters.rock.residual_friction_angle, 0.0);
+}
+
+TEST(CaseFile, UsedParametersNameTheVersionAndReadBack)
+{
+  const auto dir = scratch("used");
+  const auto c   = app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/CSLH=1.3", "Platens/Element size=0.004"});
+  ASSERT_EQ(c.used_parameters.rfind("# cosim " + app::version() + " (commit " + app::commit() + ")\n", 0), 0u)
+    << c.used_parameters.substr(0, 200);
+  write(dir / "ucs.prm", c.used_parameters);
+  const auto again = app::read_case_file((dir / "ucs.prm").string(), {});
+  EXPECT_EQ(values_of(again.used_parameters), values_of(c.used_parameters));
+  expect_close(again.parameters.sph.cslh, 1.3);
+  EXPECT_FALSE(again.parameters.platens.element_size_from_spacing);
+  expect_close(again.parameters.platens.steel.element_size, 0.004);
+  // bit for bit: the angle went through the file in degrees as the table writes it
+  EXPECT_EQ(again.parameters.rock.friction_angle, c.parameters.rock.friction_angle);
+}
+
+TEST(CaseFile, PrintedDefaultsReadBackAsTheDefaultCase)
+{
+  const std::string printed = app::default_case_file();
+  ASSERT_EQ(printed.rfind("# cosim " + app::version() + " (commit " + app::commit() + ")", 0), 0u);
+  for (const auto *key : {"subsection Rock", "set Group", "subsection SPH", "set CSLH", "set Particle spacing",
+                          "subsection Platens", "set Friction coefficient", "subsection Cutter", "set Tip angle",
+                          "subsection Output", "set Stop after steps", "smoothing length h = CSLH dx"})
+    EXPECT_NE(printed.find(key), std::string::npos) << key;
+  const auto dir = scratch("defaults");
+  std::filesystem::create_directories(dir / "a");
+  std::filesystem::create_directories(dir / "b");
+  write(dir / "a" / "case.prm", printed);
+  write(dir / "b" / "case.prm", "# nothing set: every key at its default\n");
+  const auto from_print = app::read_case_file((dir / "a" / "case.prm").string(), {});
+  const auto from_empty = app::read_case_file((dir / "b" / "case.prm").string(), {});
+  EXPECT_EQ(values_of(from_print.used_parameters), values_of(from_empty.used_parameters));
+  EXPECT_TRUE(from_print.warnings.empty());
+}
+
+TEST(CaseFile, JsonCaseEqualsItsPrmTwin)
+{
+  const auto dir = scratch("json");
+  write(dir / "twin.prm", "subsection Test\n  set Type = BTS\n  set Length = 0.025\nend\n"
+                          "subsection Rock\n  set Group = M4\n  set Friction angle = 55\nend\n"
+                          "subsection SPH\n  set FORM = 1\n  set Kernel = wendland\nend\n"
+                          "subsection Platens\n  set Model = elastic\n  set Friction coefficient = 0.2\nend\n");
+  write(dir / "twin.json", R"({"Test": {"Type": "BTS", "Length": "0.025"},
+  "Rock": {"Group": "M4", "Friction angle": {"value": "55"}},
+  "SPH": {"FORM": "1", "Kernel": "wendland"},
+  "Platens": {"Model": "elastic", "Friction coefficient": "0.2"}})");
+  const auto prm  = app::read_case_file((dir / "twin.prm").string(), {});
+  const auto json = app::read_case_file((dir / "twin.json").string(), {});
+  EXPECT_EQ(values_of(json.used_parameters), values_of(prm.used_parameters));
+  EXPECT_EQ(json.parameters.test, "BTS");
+  EXPECT_EQ(json.parameters.sph.kernel, sph::KernelType::wendland_c2);
+  EXPECT_EQ(json.parameters.platens.steel.model, fem::SteelModel::elastic);
+  expect_close(json.parameters.rock.friction_angle, radians(55));
+}
+
+TEST(CaseFile, JsonMistakesNameTheKey)
+{
+  const auto dir = scratch("json-bad");
+  const auto message = [&](const std::string &text) {
+    write(dir / "c.json", text);
+    try
+    {
+      app::read_case_file((dir / "c.json").string(), {});
+    }
+    catch (const coupling::InputError &e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(R"({"Sph": {"CSLH": "1.2"}})").find("did you mean 'SPH'"), std::string::npos);
+  EXPECT_NE(message(R"({"SPH": {"CSLHH": "1.2"}})").find("did you mean 'CSLH'"), std::string::npos);
+  const std::string wrong = message(R"({"SPH": {"CSLH": "one"}})");
+  EXPECT_NE(wrong.find("SPH/CSLH = 'one' is not a finite number"), std::string::npos) << wrong;
+  const std::string broken = message("{\"SPH\": {\"CSLH\": \"1.2\",}\n");
+  EXPECT_NE(broken.find("c.json:1: not valid JSON"), std::string::npos) << broken;
+  EXPECT_EQ(broken.find('\n'), std::string::npos);
+}
+
+TEST(CaseFile, ListValuesAreRefusedLikeAnyOtherWrongType)
+{
+  // deal.II stores a {...} value without checking or reading it; the reader must not let it by
+  const auto dir = scratch("braces");
+  write(dir / "c.prm", "subsection SPH\n  set CSLH = {1.3}\nend\n");
+  try
+  {
+    app::read_case_file((dir / "c.prm").string(), {});
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const coupling::InputError &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("c.prm:2: SPH/CSLH = '{1.3}' is not a finite number"), std::string::npos)
+      << e.what();
+  }
+}
+
+TEST(CaseFile, RunPrintParametersPrintsTheDefaultCaseFileAndWritesNothing)
+{
+  cosim_test::Sandbox box;
+  const cosim_test::Result r = cosim_test::run_cosim(box, {"run", "--print-parameters"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_EQ(r.out, app::default_case_file());
+  EXPECT_TRUE(cosim_test::listing(box.dir()).empty());
+  const cosim_test::Result help = cosim_test::run_cosim(box, {"run", "--help"});
+  EXPECT_NE(help.out.find("--print-parameters"), std::string::npos);
 }

@@ -22,11 +22,11 @@ namespace
   {
     CaseParameters p;
     p.test                  = "indentation";
-    p.rock.model            = "elastic";
+    p.rock.model            = sph::RockModel::elastic;
     p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
     p.rock.poissons_ratio   = 0.28;
     p.sph.spacing           = 2e-3;
-    p.platens.model         = "rigid";
+    p.platens.steel.model         = fem::SteelModel::rigid;
     p.cutter.shape          = "flat";
     p.cutter.indenter_width = 0.01;
     p.cutter.penetration    = 2e-4; // 0.1 dx: small strain, linear elasticity
@@ -103,9 +103,9 @@ namespace
   {
     CaseParameters p;
     p.test                  = "linear-cutting";
-    p.rock.model            = "mohr-coulomb";
+    p.rock.model            = sph::RockModel::mohr_coulomb;
     p.sph.spacing           = 2e-3;
-    p.platens.model         = "rigid";
+    p.platens.steel.model         = fem::SteelModel::rigid;
     p.cutter.shape          = "disc";
     p.cutter.disc_diameter  = 0.06;
     p.cutter.tip_width      = 0.006;

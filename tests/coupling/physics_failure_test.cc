@@ -20,11 +20,11 @@ namespace
   {
     CaseParameters p;
     p.test                  = test;
-    p.rock.model            = "mohr-coulomb";
+    p.rock.model            = sph::RockModel::mohr_coulomb;
     p.rock.youngs_modulus   = 97.07e9;
     p.rock.poissons_ratio   = 0.28;
     p.rock.cohesion         = 32.99e6;
-    p.rock.friction_angle   = 63.68;
+    p.rock.friction_angle   = 63.68 * 3.14159265358979323846 / 180.0; // [rad]
     p.output.n_history_rows = 200;
     return p;
   }
@@ -77,12 +77,12 @@ TEST(CoupledUcs, StrengthScatterIsHonouredAndWeakensTheSpecimen)
   const Summary homogeneous = run_case(p, quiet);
   // a Weibull modulus of 1000 scatters the strength by 0.13 %: the peak must be the homogeneous
   // one within 0.5 % (a scatter read but not applied would pass this, the next one not)
-  p.rock.strength_scatter = 1000;
+  p.rock_case.strength_scatter = 1000;
   const Summary narrow    = run_case(p, quiet);
   EXPECT_NEAR(narrow.peak_stress / homogeneous.peak_stress, 1.0, 0.005);
   // m = 5 (coefficient of variation 23 %): weak particles yield early, soften and load their
   // neighbours; the specimen fails below the homogeneous strength (at 2.5 mm: -27 %, m = 10: -22 %)
-  p.rock.strength_scatter = 5;
+  p.rock_case.strength_scatter = 5;
   const Summary scattered = run_case(p, quiet);
   EXPECT_LT(scattered.peak_stress, 0.9 * homogeneous.peak_stress);
   // and damage starts well below the peak, in the weakest particles, not at the peak as in the
@@ -90,7 +90,7 @@ TEST(CoupledUcs, StrengthScatterIsHonouredAndWeakensTheSpecimen)
   EXPECT_LT(extra(scattered, "failure_onset_stress_MPa") * 1e6, 0.8 * scattered.peak_stress);
   // another seed is another rock of the same statistics: the peak moves, but by less than the
   // scatter's own effect
-  p.rock.scatter_seed  = 2;
+  p.rock_case.scatter_seed  = 2;
   const Summary other  = run_case(p, quiet);
   EXPECT_NE(other.peak_stress, scattered.peak_stress);
   EXPECT_NEAR(other.peak_stress / scattered.peak_stress, 1.0, 0.1);

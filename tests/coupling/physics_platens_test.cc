@@ -26,7 +26,7 @@ namespace
   {
     CaseParameters p;
     p.test                = "UCS";
-    p.rock.model          = "elastic";
+    p.rock.model          = sph::RockModel::elastic;
     p.rock.youngs_modulus = 97.07e9; // group M1, Table 3
     p.rock.poissons_ratio = 0.28;
     // D 25 x 50 mm at 2.5 mm (10 particles across): 1/16 of the cost of the 50 x 100 mm case,
@@ -35,7 +35,7 @@ namespace
     p.length                = 0.05;
     p.sph.spacing           = 2.5e-3;
     p.sph.n_threads         = 1; // ctest runs two tests at a time on two cores
-    p.platens.model         = "elastic";
+    p.platens.steel.model         = fem::SteelModel::elastic;
     p.loading.end_strain    = 1e-3;
     p.output.n_history_rows = 200;
     return p;
@@ -52,9 +52,9 @@ namespace
     g.side      = fem::BodySide::below;
     g.contact_z = 0.0;
     fem::Parameters fp;
-    fp.youngs_modulus = c.platens.youngs_modulus;
-    fp.poissons_ratio = c.platens.poissons_ratio;
-    fp.density        = c.platens.density;
+    fp.youngs_modulus = c.platens.steel.youngs_modulus;
+    fp.poissons_ratio = c.platens.steel.poissons_ratio;
+    fp.density        = c.platens.steel.density;
     fp.element_size   = 2.0 * c.sph.spacing;
     return fem::SteelBody(g, fp);
   }

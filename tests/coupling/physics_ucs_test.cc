@@ -17,7 +17,7 @@ namespace
   {
     CaseParameters p;
     p.test                  = "UCS";
-    p.rock.model            = "elastic";
+    p.rock.model            = sph::RockModel::elastic;
     p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
     p.rock.poissons_ratio   = 0.28;
     p.sph.spacing           = 2.5e-3; // D/20, the resolution the SPH issue asks E and nu at
@@ -30,9 +30,9 @@ namespace
   CaseParameters mohr_coulomb_ucs()
   {
     CaseParameters p      = elastic_ucs();
-    p.rock.model          = "mohr-coulomb";
+    p.rock.model          = sph::RockModel::mohr_coulomb;
     p.rock.cohesion       = 32.99e6;
-    p.rock.friction_angle = 63.68;
+    p.rock.friction_angle = 63.68 * 3.14159265358979323846 / 180.0; // [rad]
     p.sph.spacing         = 5e-3;
     p.loading.end_strain  = 0.006;
     return p;

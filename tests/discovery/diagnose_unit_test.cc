@@ -49,7 +49,7 @@ namespace
   /// True when the rock model leaves `s` (principal, tension +) unchanged under a zero increment.
   bool admissible(const sph::rock::Principal &s, const sph::MaterialParameters &m)
   {
-    const auto p   = sph::rock::make_rock_parameters(m);
+    const auto p   = sph::rock::make_model_constants(m);
     sph::Tensor3 S = sph::Tensor3::Zero();
     for (int i = 0; i < 3; ++i)
       S(i, i) = s[i];

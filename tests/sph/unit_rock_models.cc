@@ -9,7 +9,7 @@ namespace
   using namespace sph;
   using namespace sph::rock;
 
-  RockParameters mc(const double tensile = 0, const double softening = 0,
+  ModelConstants mc(const double tensile = 0, const double softening = 0,
                     const double residual_phi_deg = -1)
   {
     MaterialParameters m;
@@ -23,7 +23,7 @@ namespace
     m.softening_strain  = softening;
     m.residual_fraction = 0.2;
     m.residual_friction_angle = residual_phi_deg < 0 ? -1.0 : residual_phi_deg * M_PI / 180;
-    return make_rock_parameters(m);
+    return make_model_constants(m);
   }
 
   Principal principal(const Tensor3 &s)
@@ -34,7 +34,7 @@ namespace
 
   /// A trial stress with principal values `s` in a rotated frame, reached from zero stress by the
   /// strain increment C^{-1} s.
-  Tensor3 strain_for(const Principal &s, const RockParameters &p)
+  Tensor3 strain_for(const Principal &s, const ModelConstants &p)
   {
     const Eigen::Matrix3d Q =
       Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
@@ -46,7 +46,7 @@ namespace
   // and reconstruction round-off (1e-15 of the stress scale) remain, far below the 1e-8 asked for
   TEST(SphMohrCoulomb, FaceReturnLandsOnYieldSurface)
   {
-    const RockParameters p = mc();
+    const ModelConstants p = mc();
     const auto up = update_mohr_coulomb(Tensor3::Zero(), strain_for({-10e6, -60e6, -200e6}, p),
                                         MaterialState(), p);
     const Principal s = principal(up.stress);
@@ -58,7 +58,7 @@ namespace
 
   TEST(SphMohrCoulomb, EdgeReturnsLandOnBothPlanes)
   {
-    const RockParameters p = mc();
+    const ModelConstants p = mc();
     // triaxial compression edge s0 = s1 and extension edge s1 = s2
     for (const Principal &trial : {Principal(-10e6, -12e6, -300e6), Principal(-5e6, -290e6, -300e6)})
       {
@@ -71,7 +71,7 @@ namespace
 
   TEST(SphMohrCoulomb, ApexReturn)
   {
-    const RockParameters p = mc();
+    const ModelConstants p = mc();
     const double apex = p.cohesion * p.cos_phi / p.sin_phi;
     const auto up = update_mohr_coulomb(Tensor3::Zero(), strain_for({80e6, 70e6, 60e6}, p),
                                         MaterialState(), p);
@@ -82,7 +82,7 @@ namespace
 
   TEST(SphMohrCoulomb, ElasticInsideSurface)
   {
-    const RockParameters p = mc();
+    const ModelConstants p = mc();
     const Tensor3 de = strain_for({-1e6, -2e6, -3e6}, p);
     const auto    up = update_mohr_coulomb(Tensor3::Zero(), de, MaterialState(), p);
     EXPECT_LT((up.stress - elastic_trial(Tensor3::Zero(), de, p)).norm(), 1e-6);
@@ -91,7 +91,7 @@ namespace
 
   TEST(SphMohrCoulomb, TensionCutOff)
   {
-    const RockParameters p = mc(5e6);
+    const ModelConstants p = mc(5e6);
     const auto up = update_mohr_coulomb(Tensor3::Zero(), strain_for({30e6, 0, -2e6}, p),
                                         MaterialState(), p);
     const Principal s = principal(up.stress);
@@ -101,7 +101,7 @@ namespace
 
   TEST(SphMohrCoulomb, SofteningOnSoftenedSurfaceAndDamageMonotone)
   {
-    const RockParameters p = mc(5e6, 1e-3);
+    const ModelConstants p = mc(5e6, 1e-3);
     MaterialState        state;
     Tensor3              stress = Tensor3::Zero();
     double               last   = 0;
@@ -133,7 +133,7 @@ namespace
     // phi 40 deg -> 30 deg and c -> 0.2 c over a plastic strain of 1e-3, under a confined
     // compression (the crushed zone under a cutter): every plastic state lies on the surface of
     // its damage's c(d) and phi(d) = 40 + (30 - 40) d (1e-8 of the stress scale, as above)
-    const RockParameters p = mc(0, 1e-3, 30);
+    const ModelConstants p = mc(0, 1e-3, 30);
     MaterialState        state;
     Tensor3              stress = Tensor3::Zero();
     const Tensor3        de     = strain_for({-6e6, -6e6, -40e6}, p);
@@ -163,7 +163,7 @@ namespace
     EXPECT_NEAR(mohr_coulomb_yield(s, cr, p.sin_phi, p.cos_phi), inside, 1e-8 * 500e6);
     // without a residual angle the same loading ends on the 40 deg envelope of the residual
     // cohesion (friction_at returns the stored sin and cos: no change for the other models)
-    const RockParameters q = mc(0, 1e-3);
+    const ModelConstants q = mc(0, 1e-3);
     MaterialState        sq;
     Tensor3              tq = Tensor3::Zero();
     for (int k = 0; k < 60; ++k)
@@ -187,7 +187,7 @@ namespace
     m.hb_mb          = 12;
     m.hb_s           = 1;
     m.hb_a           = 0.5;
-    const RockParameters p = make_rock_parameters(m);
+    const ModelConstants p = make_model_constants(m);
     const auto up = update_hoek_brown(Tensor3::Zero(), strain_for({-20e6, -25e6, -400e6}, p),
                                       MaterialState(), p);
     const Principal s = principal(up.stress);

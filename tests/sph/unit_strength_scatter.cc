@@ -78,7 +78,7 @@ TEST(SphStrengthScatter, MohrCoulombYieldsAtTheParticlesScaledCohesion)
   m.poissons_ratio = 0.25;
   m.cohesion       = 20e6;
   m.friction_angle = 40.0 * M_PI / 180;
-  const auto p     = rock::make_rock_parameters(m);
+  const auto p     = rock::make_model_constants(m);
   // uniaxial compression well past the intact strength 2c cos(phi)/(1 - sin(phi)) = 85.8 MPa
   const double ucs = 2 * 20e6 * std::cos(m.friction_angle) / (1 - std::sin(m.friction_angle));
   for (const double factor : {1.0, 0.5, 1.7})

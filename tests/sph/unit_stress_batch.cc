@@ -137,7 +137,7 @@ namespace
     // step. rock::elastic_trial on the batch's rotated stress and strain increment, and
     // MohrCoulomb itself with a cohesion far above these stresses (surely elastic), must give
     // the batch's trial exactly, on both paths
-    sph::rock::RockParameters prm;
+    sph::rock::ModelConstants prm;
     prm.G        = 24e9; // as Store::fields: two_G = 2 G, lambda = K - 2G/3
     prm.K        = 40e9;
     prm.cohesion = 1e12;

@@ -1,62 +1,63 @@
 #pragma once
 /// @file
-/// Everything a case file (.prm) says, validated and in SI units. Only coupling/app knows the .prm
-/// format; the drivers take this plain struct. Angles are stored in degrees as users write them.
+/// Everything a case file says, validated and in SI units: the parts' own parameter structs
+/// (sph::Parameters, sph::MaterialParameters, fem::Parameters) and what only a case has (its rock
+/// group, the platens' interface and geometry, the loading path, the output). Each default lives
+/// once, beside its member; the case-file keys (app/src/*_keys.cc) take them from here. Rock angles
+/// are in radians, as sph stores them; the case file speaks degrees and converts where the key is
+/// declared.
+
+#include <fem/parameters.h>
+#include <sph/parameters.h>
 
 #include <string>
 
 namespace coupling
 {
-  /// Rock material of one run, after the group lookup in cases/data and any explicit overrides.
-  struct RockParameters
+  /// What only the case knows about its rock: where its values come from and how they scatter.
+  /// The material itself is CaseParameters::rock.
+  struct RockCase
   {
-    std::string group = "M1";          ///< material group M1..M10 (Table 3 / Table 4 of the paper)
-    std::string model = "mohr-coulomb"; ///< elastic, mohr-coulomb, mohr-coulomb-cutoff, hoek-brown
-    double density = 2900.0;           ///< [kg/m^3]
-    double youngs_modulus = 97.07e9;   ///< [Pa]
-    double poissons_ratio = 0.28;      ///< [-]
-    double cohesion = 32.99e6;         ///< [Pa]
-    double friction_angle = 63.68;     ///< [deg]
-    double dilation_angle = 0.0;       ///< [deg] (non-associated flow when below friction_angle)
-    double tensile_strength = 0.0;     ///< [Pa] tension cut-off; 0 = none (mohr-coulomb-cutoff)
-    double hoek_brown_mi = 0.0;        ///< [-] Hoek-Brown m_i (hoek-brown)
-    double ucs = 0.0;                  ///< [Pa] uniaxial strength sigma_ci (hoek-brown, reporting)
-    double bts = 0.0;                  ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
-    double softening_strain = 2e-3;    ///< [-] plastic strain over which strength falls to residual
-    double residual_fraction = 0.1;    ///< [-] residual strength / peak strength
-    double residual_friction_angle = -1; ///< [deg] friction angle of crushed rock (damage 1); < 0: none
-    double strength_scatter = 0.0;     ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
-    int scatter_seed = 1;              ///< seed of the strength scatter (same seed, same rock)
+    std::string group = "M1"; ///< material group M1..M10 (Table 3 / Table 4 of the paper)
+    /// Source of c, phi: calibrated (Table 4), measured (Table 3) or brazilian (calibrated to UCS
+    /// and to BTS at the disc centre's stress state)
+    std::string strength_source = "calibrated";
+    std::string data_directory; ///< folder of the group tables; empty = the shipped cases/data
+    double ucs = 0.0;           ///< [Pa] the group's uniaxial strength (reporting, CSM estimates)
+    double bts = 0.0;           ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
+    double strength_scatter = 0.0; ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
+    int scatter_seed = 1;          ///< seed of the strength scatter (same seed, same rock)
   };
 
-  /// SPH numerics (names after LS-DYNA's *CONTROL_SPH / *SECTION_SPH).
-  struct SphParameters
+  /// The case's rock: the library's defaults, except that a case's rock softens (over a plastic
+  /// strain of 2e-3) where sph's bare material does not.
+  inline sph::MaterialParameters case_rock()
   {
-    double spacing = 2.5e-3;      ///< particle spacing dx [m]
-    int form = 8;                 ///< LS-DYNA FORM: 0, 1, 7 or 8
-    double cslh = 1.2;            ///< h = CSLH * dx [-]
-    double tssfac = 0.9;          ///< time-step scale factor [-]
-    std::string kernel = "cubic"; ///< cubic or wendland
-    bool evolve_smoothing_length = false; ///< dh/dt = (h/dim) div v
-    double av_alpha = 1.0;        ///< Monaghan artificial viscosity, linear term [-]
-    double av_beta = 1.0;         ///< Monaghan artificial viscosity, quadratic term [-]
-    double hourglass = 0.1;       ///< total-Lagrangian hourglass coefficient [-]
-    int n_threads = 0;            ///< 0 = all cores
-    bool single_precision = true; ///< 3-D pair force in mixed precision (SPH/Pair force precision)
-    bool loaded_face_correction = true; ///< UCS/CTCS: boundary term lumped on the loaded layer
-  };
+    sph::MaterialParameters m;
+    m.softening_strain = 2e-3;
+    return m;
+  }
 
-  /// Platens: rigid (prescribed motion) or elastic steel (deal.II FEM).
+  /// The case's platen steel: fem's defaults, except that a case's platens are rigid unless it
+  /// says otherwise.
+  inline fem::Parameters case_platen_steel()
+  {
+    fem::Parameters f;
+    f.model = fem::SteelModel::rigid;
+    return f;
+  }
+
+  /// Platens (and cutters): the steel body of fem plus the interface and geometry settings that
+  /// fem does not have.
   struct PlatenParameters
   {
-    std::string model = "rigid";  ///< rigid or elastic
+    fem::Parameters steel = case_platen_steel(); ///< model, E, nu, rho, element size of the body
+    /// true: the element size follows the particle spacing (the driver's rule); false:
+    /// steel.element_size as given
+    bool element_size_from_spacing = true;
     double friction = 0.0;        ///< Coulomb friction coefficient rock-platen [-]
-    double youngs_modulus = 200e9; ///< steel [Pa]
-    double poissons_ratio = 0.3;  ///< steel [-]
-    double density = 7850.0;      ///< steel [kg/m^3]
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
-    double element_size = 0.0;    ///< FEM element size [m]; 0 = from the particle spacing
     /// penalty stiffness / its stability bound at the rock's own step [-]; the coupled step is
     /// that step / sqrt(1 + scale) (coupling::coupled_time_step)
     double contact_stiffness_scale = 0.1;
@@ -87,11 +88,11 @@ namespace coupling
   };
 
   /// Indentation and linear cutting: the cutter (an FEM body; model and steel from PlatenParameters),
-  /// its path, and the rock block. Angles in degrees as users write them.
+  /// its path, and the rock block. The tip angle in degrees: the cutting driver converts it.
   struct CutterParameters
   {
     std::string shape = "disc";     ///< wedge, cone, flat (cylindrical punch) or disc (CCS disc)
-    double tip_angle = 90.0;        ///< wedge / cone included angle [deg]
+    double tip_angle = 90.0;        ///< wedge / cone included angle [deg] (fem::BodyGeometry: radians)
     double tip_radius = 0.0;        ///< wedge / cone tip rounding radius [m]; 0 = sharp
     double indenter_width = 0.02;   ///< wedge width across the tip, cone / punch diameter [m]
     double wedge_length = 0.02;     ///< wedge tip length along y [m]
@@ -109,13 +110,15 @@ namespace coupling
   /// One case: the test, the specimen, and the parts.
   struct CaseParameters
   {
-    std::string name = "ucs";        ///< case name (default output folder results/<name>)
+    std::string name;                ///< case name; empty = the case file's stem (results/<name>)
     std::string test = "UCS";        ///< UCS, BTS, CTCS, indentation or linear-cutting
     double diameter = 0.05;          ///< specimen diameter [m]
     double length = 0.1;             ///< UCS/CTCS: length; BTS: disc thickness [m]
     double confining_pressure = 0.0; ///< CTCS lateral pressure [Pa], compression positive
-    RockParameters rock;
-    SphParameters sph;
+    sph::MaterialParameters rock = case_rock(); ///< the rock material (group values resolved)
+    RockCase rock_case;              ///< the rock's group, strength source and scatter
+    sph::Parameters sph;             ///< SPH numerics (TSSFAC as given; the body takes min(TSSFAC, 1))
+    bool loaded_face_correction = true; ///< UCS/CTCS: boundary term lumped on the loaded layer
     PlatenParameters platens;
     LoadingParameters loading;
     OutputParameters output;

@@ -175,7 +175,7 @@ namespace sph
     /// The parameters the body was built with.
     const Parameters &parameters() const { return prm_; }
     /// The rock parameters in use.
-    const rock::RockParameters &rock_parameters() const { return rock_; }
+    const rock::ModelConstants &model_constants() const { return rock_; }
 
     /// Adds every field that changes during a run to `out`, names prefixed by `prefix`: with
     /// load_state on a body built from the same parameters and particles, the run continues
@@ -211,7 +211,7 @@ namespace sph
 
     Parameters             prm_;
     MaterialParameters     material_;
-    rock::RockParameters   rock_;
+    rock::ModelConstants   rock_;
     rock::Model            model_;
     ParticleStore<dim>     p_;
     PairList               pairs_;

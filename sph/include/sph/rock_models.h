@@ -18,8 +18,9 @@ namespace sph::rock
 {
   using Principal = Eigen::Vector3d;
 
-  /// Parameters the updates need, derived once from MaterialParameters.
-  struct RockParameters
+  /// Constants of the rock model that the stress updates need (moduli, sines of the angles,
+  /// Hoek-Brown constants), derived once from MaterialParameters.
+  struct ModelConstants
   {
     double K = 0;                  ///< bulk modulus [Pa]
     double G = 0;                  ///< shear modulus [Pa]
@@ -34,10 +35,10 @@ namespace sph::rock
     double phi_residual = -1;      ///< friction angle at damage 1 [rad]; < 0: phi throughout
   };
 
-  /// RockParameters from the user-facing MaterialParameters.
-  inline RockParameters make_rock_parameters(const MaterialParameters &m)
+  /// The model constants of a material.
+  inline ModelConstants make_model_constants(const MaterialParameters &m)
   {
-    RockParameters p;
+    ModelConstants p;
     const double E = m.youngs_modulus, nu = m.poissons_ratio;
     p.K        = E / (3.0 * (1.0 - 2.0 * nu));
     p.G        = E / (2.0 * (1.0 + nu));
@@ -70,13 +71,13 @@ namespace sph::rock
   };
 
   /// Damage d = min(kappa / softening_strain, 1) (0 without softening) [-].
-  inline double damage_of(const double kappa, const RockParameters &p)
+  inline double damage_of(const double kappa, const ModelConstants &p)
   {
     return p.softening_strain > 0 ? std::min(kappa / p.softening_strain, 1.0) : 0.0;
   }
 
   /// Strength factor 1 - (1 - residual_fraction) d: multiplies c and sigma_t [-].
-  inline double strength_factor(const double damage, const RockParameters &p)
+  inline double strength_factor(const double damage, const ModelConstants &p)
   {
     return 1.0 - (1.0 - p.residual_fraction) * damage;
   }
@@ -87,7 +88,7 @@ namespace sph::rock
   {
     double sin_phi, cos_phi;
   };
-  inline Friction friction_at(const double damage, const RockParameters &p)
+  inline Friction friction_at(const double damage, const ModelConstants &p)
   {
     if (p.phi_residual < 0 || damage <= 0)
       return {p.sin_phi, p.cos_phi};
@@ -96,20 +97,20 @@ namespace sph::rock
   }
 
   /// Elastic predictor: stress_old + C : de (isotropic).
-  inline Tensor3 elastic_trial(const Tensor3 &stress_old, const Tensor3 &de, const RockParameters &p)
+  inline Tensor3 elastic_trial(const Tensor3 &stress_old, const Tensor3 &de, const ModelConstants &p)
   {
     const double tr = de.trace();
     return stress_old + 2.0 * p.G * de + (p.K - 2.0 / 3.0 * p.G) * tr * Tensor3::Identity();
   }
 
   /// D * b in principal space for D = lambda 1 1^T + 2G I.
-  inline Principal principal_stiffness_times(const Principal &b, const RockParameters &p)
+  inline Principal principal_stiffness_times(const Principal &b, const ModelConstants &p)
   {
     return (p.K - 2.0 / 3.0 * p.G) * b.sum() * Principal::Ones() + 2.0 * p.G * b;
   }
 
   /// Plastic strain (principal) D^{-1} (s_trial - s_new).
-  inline Principal principal_compliance_times(const Principal &ds, const RockParameters &p)
+  inline Principal principal_compliance_times(const Principal &ds, const ModelConstants &p)
   {
     const double mean = ds.sum() / 3.0;
     return (ds - mean * Principal::Ones()) / (2.0 * p.G) + mean / (3.0 * p.K) * Principal::Ones();
@@ -127,7 +128,7 @@ namespace sph::rock
   /// s0 = s1 and s1 = s2, or the apex c cot(phi). Returns false if `s` was admissible.
   inline bool return_mohr_coulomb(Principal &s, const double c, const double sin_phi,
                                   const double cos_phi, const double sin_psi,
-                                  const RockParameters &p)
+                                  const ModelConstants &p)
   {
     const double tol = 1e-14 * (std::abs(c) + s.cwiseAbs().maxCoeff());
     const double fA  = mohr_coulomb_yield(s, c, sin_phi, cos_phi);
@@ -182,7 +183,7 @@ namespace sph::rock
 
   /// Rankine (tension cut-off) return with associated flow: no principal stress above `st` [Pa].
   /// Returns false if `s` was admissible.
-  inline bool return_rankine(Principal &s, const double st, const RockParameters &p)
+  inline bool return_rankine(Principal &s, const double st, const ModelConstants &p)
   {
     if (s[0] <= st)
       return false;
@@ -239,7 +240,7 @@ namespace sph::rock
 
   /// Linear isotropic elasticity: stress_old + C : de.
   inline StressUpdate update_elastic(const Tensor3 &stress_old, const Tensor3 &strain_increment,
-                                     const MaterialState &old_state, const RockParameters &prm)
+                                     const MaterialState &old_state, const ModelConstants &prm)
   {
     return {elastic_trial(stress_old, strain_increment, prm), old_state};
   }
@@ -253,7 +254,7 @@ namespace sph::rock
   /// is elastic, as `surface` would find.
   template <typename Surface, typename SurelyElastic>
   inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
-                                     const MaterialState &old_state, const RockParameters &prm,
+                                     const MaterialState &old_state, const ModelConstants &prm,
                                      const Surface &surface, const SurelyElastic &surely_elastic)
   {
     const Tensor3 trial = elastic_trial(stress_old, de, prm);
@@ -352,7 +353,7 @@ namespace sph::rock
   ///     <= 2 m sin(phi) + q (2 + |sin(phi)| / sqrt(3)) - 2 c cos(phi),   s0 <= m + 2 q / sqrt(3).
   /// Both below the surfaces by a margin far above round-off: the trial is admissible.
   inline bool mohr_coulomb_surely_elastic(const Tensor3 &t, const double strength,
-                                          const double damage, const RockParameters &prm)
+                                          const double damage, const ModelConstants &prm)
   {
     const double   factor = strength * strength_factor(damage, prm);
     const Friction fr     = friction_at(damage, prm);
@@ -381,7 +382,7 @@ namespace sph::rock
   /// linearly with the equivalent plastic strain to residual_fraction at softening_strain.
   inline StressUpdate update_mohr_coulomb(const Tensor3 &stress_old, const Tensor3 &strain_increment,
                                           const MaterialState &old_state,
-                                          const RockParameters &prm)
+                                          const ModelConstants &prm)
   {
     const auto surface = [&prm](Principal &s, const double strength, const double damage) {
       const double   factor = strength * strength_factor(damage, prm);
@@ -413,7 +414,7 @@ namespace sph::rock
   /// successive tangent Mohr-Coulomb planes (converged to 1e-12), dilation psi as the potential,
   /// tension cut-off at s sigma_ci / m_b. Softening scales s (and the cut-off) by the strength factor.
   inline StressUpdate update_hoek_brown(const Tensor3 &stress_old, const Tensor3 &strain_increment,
-                                        const MaterialState &old_state, const RockParameters &prm)
+                                        const MaterialState &old_state, const ModelConstants &prm)
   {
     const auto surface = [&prm](Principal &s, const double strength, const double damage) {
       const double factor = strength * strength_factor(damage, prm);
@@ -460,12 +461,12 @@ namespace sph::rock
   struct Elastic
   {
     StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
-                            const RockParameters &p) const
+                            const ModelConstants &p) const
     {
       return update_elastic(s, de, h, p);
     }
     /// True where the elastic trial t (elastic_trial of the same s and de) is the update.
-    bool surely_elastic(const Tensor3 &, const MaterialState &, const RockParameters &) const
+    bool surely_elastic(const Tensor3 &, const MaterialState &, const ModelConstants &) const
     {
       return true;
     }
@@ -473,11 +474,11 @@ namespace sph::rock
   struct MohrCoulomb
   {
     StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
-                            const RockParameters &p) const
+                            const ModelConstants &p) const
     {
       return update_mohr_coulomb(s, de, h, p);
     }
-    bool surely_elastic(const Tensor3 &t, const MaterialState &h, const RockParameters &p) const
+    bool surely_elastic(const Tensor3 &t, const MaterialState &h, const ModelConstants &p) const
     {
       return mohr_coulomb_surely_elastic(t, h.strength, h.damage, p);
     }
@@ -485,11 +486,11 @@ namespace sph::rock
   struct HoekBrown
   {
     StressUpdate operator()(const Tensor3 &s, const Tensor3 &de, const MaterialState &h,
-                            const RockParameters &p) const
+                            const ModelConstants &p) const
     {
       return update_hoek_brown(s, de, h, p);
     }
-    bool surely_elastic(const Tensor3 &, const MaterialState &, const RockParameters &) const
+    bool surely_elastic(const Tensor3 &, const MaterialState &, const ModelConstants &) const
     {
       return false; // no cheap test: the principal stresses decide
     }
@@ -511,7 +512,7 @@ namespace sph::rock
   }
 
   /// Elastic strain energy density 1/2 sigma : C^{-1} : sigma [J/m^3].
-  inline double elastic_energy_density(const Tensor3 &s, const RockParameters &p)
+  inline double elastic_energy_density(const Tensor3 &s, const ModelConstants &p)
   {
     const double  mean = s.trace() / 3.0;
     const Tensor3 dev  = s - mean * Tensor3::Identity();

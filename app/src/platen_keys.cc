@@ -1,0 +1,61 @@
+// Case-file keys of the Platens section: the steel body (fem::Parameters) and the interface and
+// geometry settings of coupling::PlatenParameters.
+#include "case_keys.h"
+
+namespace app::keys
+{
+  void declare_platen_keys(Section &s, coupling::CaseParameters &p)
+  {
+    coupling::PlatenParameters &pl = p.platens;
+    fem::Parameters &steel         = pl.steel;
+    s.add_enum("Model", steel.model, "rigid|elastic", {fem::SteelModel::rigid, fem::SteelModel::elastic},
+               "rigid (prescribed) or elastic steel (FEM)");
+    s.add<double>("Friction coefficient", pl.friction, "Coulomb friction rock-platen [-]",
+                  [](double v) { return v >= 0 && v <= 2; }, "must be in [0, 2]");
+    s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
+                  "must be in (0, 1e13) Pa");
+    s.add<double>("Poissons ratio", steel.poissons_ratio, "[-]", [](double v) { return v >= 0 && v < 0.5; },
+                  "must be in [0, 0.5)");
+    s.add<double>("Density", steel.density, "[kg/m^3]", [](double v) { return v > 0 && v < 30000; },
+                  "must be in (0, 30000) kg/m^3");
+    s.add<double>("Thickness", pl.thickness, "along the loading axis [m]", [](double v) { return v > 0 && v <= 10; },
+                  "must be in (0, 10] m");
+    s.add<double>("Diameter", pl.diameter, "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen",
+                  [](double v) { return v >= 0 && v <= 10; }, "must be in [0, 10] m (0 = from the specimen)");
+    // 0 selects the rule (from the particle spacing); another value is the steel's element size
+    {
+      const std::string doc = "FEM element size [m]; 0 = from the particle spacing";
+      s.add_real("Element size", pl.element_size_from_spacing ? "0" : format(steel.element_size),
+                 [&pl](double h) {
+                   pl.element_size_from_spacing = h == 0;
+                   if (h != 0)
+                     pl.steel.element_size = h;
+                 },
+                 doc);
+      s.check("Element size", [&pl]() {
+        const double h = pl.element_size_from_spacing ? 0.0 : pl.steel.element_size;
+        return h >= 0 && h <= pl.thickness ? "" : "must be in [0, platen thickness] m (0 = from the particle spacing)";
+      });
+    }
+    s.add<double>("Contact stiffness scale", pl.contact_stiffness_scale,
+                  "penalty stiffness / its stability bound at the rock step [-]; the step shrinks by sqrt(1 + s); 0.5 for stress waves",
+                  [](double v) { return v > 0 && v <= 1; }, "must be in (0, 1]");
+    s.add_choice("Shape", pl.shape, "flat|jaw", "BTS: flat platens or ISRM curved loading jaws (UCS/CTCS: flat only)",
+                 [&p]() {
+                   return p.platens.shape == "flat" || p.test == "BTS" ? std::string()
+                                                                       : "jaw is for BTS only; use flat for " + p.test;
+                 });
+    s.add<double>("Jaw radius", pl.jaw_radius, "BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius (ISRM)");
+    s.check("Jaw radius", [&p]() {
+      const coupling::PlatenParameters &pl = p.platens;
+      if (pl.shape != "jaw")
+        return pl.jaw_radius == 0 ? std::string() : "is used with Platens/Shape = jaw only; leave it 0";
+      const double width  = pl.diameter > 0 ? pl.diameter : 0.6 * p.diameter; // as the driver builds it
+      const double radius = pl.jaw_radius > 0 ? pl.jaw_radius : 0.75 * p.diameter;
+      return pl.jaw_radius >= 0 && radius > 0.5 * p.diameter && radius > 0.5 * width
+               ? std::string()
+               : "must exceed the disc radius (" + format(0.5 * p.diameter * 1e3) + " mm) and half the jaw width (" +
+                   format(0.5 * width * 1e3) + " mm); ISRM: 1.5 x the disc radius (0 = that)";
+    });
+  }
+} // namespace app::keys

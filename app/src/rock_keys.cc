@@ -1,0 +1,165 @@
+// Case-file keys of the Rock section: the material (sph::MaterialParameters; angles written in
+// degrees, stored in radians) and what only the case has (group, strength source, scatter). Keys
+// left empty take the group's value (resolve_rock).
+#include "case_keys.h"
+
+#include <diagnose/calibrate.h>
+#include <diagnose/material_table.h>
+
+#include <cmath>
+
+namespace app::keys
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    double radians(double degrees) { return degrees * pi / 180.0; }
+    double degrees(double radians) { return radians * 180.0 / pi; }
+  } // namespace
+
+  void declare_rock_keys(Section &s, coupling::CaseParameters &p, RockOverrides &o)
+  {
+    sph::MaterialParameters &m = p.rock;
+    coupling::RockCase &c      = p.rock_case;
+    const auto mohr_coulomb    = [&m]() {
+      return m.model == sph::RockModel::mohr_coulomb || m.model == sph::RockModel::mohr_coulomb_cutoff;
+    };
+    s.add("Group", c.group, "material group looked up in the data folder (M1..M10)");
+    s.add_enum("Model", m.model, "elastic|mohr-coulomb|mohr-coulomb-cutoff|hoek-brown",
+               {sph::RockModel::elastic, sph::RockModel::mohr_coulomb, sph::RockModel::mohr_coulomb_cutoff,
+                sph::RockModel::hoek_brown},
+               "constitutive model of the rock");
+    s.add_choice("Strength parameters", c.strength_source, "calibrated|measured|brazilian",
+                 "c, phi from Table 4 (calibrated to UCS and BTS), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian)");
+    s.add("Data directory", c.data_directory,
+          "folder with table3_fitted_parameters.csv, table4_calibrated.csv; empty = cases/data");
+    s.add<double>("Density", m.density, "[kg/m^3] (not in the paper: a typical basalt value)",
+                  [](double v) { return v > 0 && v < 30000; }, "must be in (0, 30000) kg/m^3");
+    s.add_optional("Youngs modulus", o.youngs_modulus, "[Pa]; empty = from Rock/Group");
+    s.check("Youngs modulus", [&m]() {
+      return m.youngs_modulus > 0 && m.youngs_modulus < 1e13 ? "" : "must be in (0, 1e13) Pa (basalt: about 1e11)";
+    });
+    s.add_optional("Poissons ratio", o.poissons_ratio, "[-]; empty = from Rock/Group");
+    s.check("Poissons ratio",
+            [&m]() { return m.poissons_ratio >= 0 && m.poissons_ratio < 0.5 ? "" : "must be in [0, 0.5)"; });
+    s.add_optional("Cohesion", o.cohesion, "[Pa]; empty = from Rock/Group");
+    s.check("Cohesion", [&m]() { return m.cohesion > 0 ? "" : "must be > 0 Pa"; });
+    s.add_optional("Friction angle", o.friction_angle_deg, "[deg]; empty = from Rock/Group");
+    s.check("Friction angle", [&m]() {
+      const double phi = degrees(m.friction_angle);
+      return phi > 0 && phi < 90 ? "" : "must be in (0, 90) degrees";
+    });
+    s.add_degrees("Dilation angle", m.dilation_angle, "[deg], at most the friction angle",
+                  [](double v) { return v >= 0; }, "must be >= 0 degrees");
+    s.check("Dilation angle", [&m]() {
+      return m.dilation_angle <= m.friction_angle
+               ? std::string()
+               : "must be in [0, friction angle = " + format(degrees(m.friction_angle)) + "] degrees";
+    });
+    s.add_optional("Tensile strength", o.tensile_strength,
+                   "tension cut-off [Pa]; empty = the group's BTS for mohr-coulomb-cutoff, else none");
+    s.check("Tensile strength", [&m]() {
+      if (m.tensile_strength < 0)
+        return std::string("must be >= 0 Pa");
+      if (m.model != sph::RockModel::mohr_coulomb_cutoff)
+        return std::string();
+      const double apex = m.cohesion / std::tan(m.friction_angle);
+      return m.tensile_strength > 0 && m.tensile_strength <= apex
+               ? std::string()
+               : "must be in (0, c/tan(phi) = " + format(apex) + "] Pa for mohr-coulomb-cutoff";
+    });
+    s.add<double>("Hoek-Brown mi", m.hb_mb, "Hoek-Brown m_i [-] (basalt about 25)");
+    s.check("Hoek-Brown mi", [&m]() {
+      return m.model != sph::RockModel::hoek_brown || (m.hb_mb > 0 && m.hb_mb < 100) ? "" : "must be in (0, 100) for hoek-brown";
+    });
+    s.add_optional("UCS", o.ucs, "uniaxial strength sigma_ci [Pa]; empty = from Rock/Group");
+    s.check("UCS", [&m]() {
+      return m.model != sph::RockModel::hoek_brown || m.hb_sigma_ci > 0 ? "" : "must be > 0 Pa for hoek-brown";
+    });
+    s.add<double>("Softening strain", m.softening_strain, "plastic strain to residual strength [-]",
+                  [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    s.add<double>("Residual fraction", m.residual_fraction, "residual / peak strength [-]",
+                  [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1]");
+    s.add_optional("Residual friction angle", o.residual_friction_angle_deg,
+                   "[deg] friction angle of fully damaged (crushed) rock, reached with the residual strength; empty = the friction angle throughout (mohr-coulomb models)");
+    s.check("Residual friction angle", [&m, &o, mohr_coulomb]() {
+      if (!o.residual_friction_angle_deg)
+        return std::string();
+      if (!mohr_coulomb())
+        return std::string("softens the Mohr-Coulomb friction angle; Rock/Model = ") +
+               (m.model == sph::RockModel::elastic ? "elastic" : "hoek-brown") + " has none (leave it empty)";
+      const double phi_r = *o.residual_friction_angle_deg, phi = degrees(m.friction_angle);
+      if (!(phi_r > 0 && m.residual_friction_angle <= m.friction_angle))
+        return "must be in (0, friction angle = " + format(phi) + "] degrees";
+      if (!(m.residual_friction_angle >= m.dilation_angle))
+        return "must be at least Rock/Dilation angle = " + format(degrees(m.dilation_angle)) + " degrees";
+      return std::string();
+    });
+    s.add<double>("Strength scatter", c.strength_scatter,
+                  "Weibull modulus m of a per-particle strength factor (mean 1) on c, tensile strength and Hoek-Brown s; 0 = homogeneous rock, else >= 1 (rock: about 5-20)",
+                  [](double v) { return v == 0 || (v >= 1 && v <= 1000); },
+                  "must be 0 (homogeneous) or a Weibull modulus in [1, 1000]");
+    s.check("Strength scatter", [&m, &c]() {
+      return c.strength_scatter == 0 || m.model != sph::RockModel::elastic
+               ? ""
+               : "scatters strength, which Rock/Model = elastic does not have; set it to 0 or choose a plastic model";
+    });
+    s.add<int>("Scatter seed", c.scatter_seed, "seed of the strength scatter: the same seed, the same rock",
+               [](int v) { return v >= 0; }, "must be >= 0");
+  }
+
+  void resolve_rock(coupling::CaseParameters &p, RockOverrides &o, const diagnose::MaterialTable &table,
+                    const diagnose::MaterialGroup &group,
+                    const std::function<void(const std::string &, const std::string &)> &fail)
+  {
+    sph::MaterialParameters &m = p.rock;
+    coupling::RockCase &c      = p.rock_case;
+    std::optional<double> group_c, group_phi; // [Pa], [deg]
+    if (c.strength_source == "brazilian")
+    {
+      // the disc centre's stress state (3 BTS, -BTS) on the envelope instead of uniaxial tension
+      if (!(group.ucs > 4 * group.bts))
+        fail("Rock/Strength parameters", "brazilian needs UCS > 4 BTS (group " + c.group + ")");
+      const diagnose::MohrCoulombStrength b = diagnose::calibrate_mohr_coulomb_brazilian(group.ucs, group.bts);
+      group_c   = b.cohesion;
+      group_phi = b.friction_angle;
+    }
+    else if (c.strength_source == "measured")
+    {
+      if (!group.measured_cohesion)
+        fail("Rock/Strength parameters", "group " + c.group + " has no measured c, phi (Table 3); groups that have them: " +
+                                           table.groups_with_measured_strength() + "; or use calibrated");
+      group_c   = group.measured_cohesion;
+      group_phi = group.measured_friction_angle;
+    }
+    else
+    {
+      group_c   = group.calibrated_cohesion;
+      group_phi = group.calibrated_friction_angle;
+    }
+    m.youngs_modulus = o.youngs_modulus.value_or(group.youngs_modulus);
+    m.poissons_ratio = o.poissons_ratio.value_or(group.poissons_ratio);
+    c.ucs            = o.ucs.value_or(group.ucs);
+    m.hb_sigma_ci    = c.ucs;
+    c.bts            = group.bts;
+    const bool cutoff  = m.model == sph::RockModel::mohr_coulomb_cutoff;
+    m.tensile_strength = o.tensile_strength.value_or(cutoff ? group.bts : 0.0);
+    const bool needs_mc = m.model == sph::RockModel::mohr_coulomb || cutoff;
+    if (o.cohesion)
+      m.cohesion = *o.cohesion;
+    else if (group_c)
+      m.cohesion = *group_c;
+    else if (needs_mc)
+      fail("Rock/Group", "has no calibrated c, phi (no table4_calibrated.csv row); set Rock/Cohesion and Rock/Friction angle");
+    if (o.friction_angle_deg)
+      m.friction_angle = radians(*o.friction_angle_deg);
+    else if (group_phi)
+    {
+      o.friction_angle_deg = group_phi; // as the table writes it, for used_parameters.prm
+      m.friction_angle     = radians(*group_phi);
+    }
+    m.residual_friction_angle = o.residual_friction_angle_deg ? radians(*o.residual_friction_angle_deg) : -1.0;
+  }
+
+  double friction_angle_degrees(const sph::MaterialParameters &m) { return degrees(m.friction_angle); }
+} // namespace app::keys
