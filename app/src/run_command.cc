@@ -69,29 +69,11 @@ namespace app
       struct sigaction old_int_ = {}, old_term_ = {};
     };
 
-    /// The folder of measured-data tables a case read: Rock/Data directory in its used
-    /// parameters (written absolute), else the shipped one.
+    /// The folder of measured-data tables a case read: Rock/Data directory, else the shipped one.
     std::string data_directory_of(const CaseFile &case_file)
     {
-      std::istringstream in(case_file.used_parameters);
-      std::string line;
-      bool rock = false;
-      while (std::getline(in, line))
-      {
-        const auto begin = line.find_first_not_of(' ');
-        const std::string l = begin == std::string::npos ? "" : line.substr(begin);
-        if (l.rfind("subsection ", 0) == 0)
-          rock = l == "subsection Rock";
-        else if (rock && l.rfind("set Data directory", 0) == 0 && l.find('=') != std::string::npos)
-        {
-          std::string value = l.substr(l.find('=') + 1);
-          value = value.substr(0, value.find(" #"));
-          const auto first = value.find_first_not_of(' '), last = value.find_last_not_of(' ');
-          if (first != std::string::npos)
-            return value.substr(first, last - first + 1);
-        }
-      }
-      return data_directory().string();
+      const std::string &own = case_file.parameters.rock_case.data_directory;
+      return own.empty() ? data_directory().string() : own;
     }
 
     /// What curve.png shows beside the curve: the rock group, the particle spacing and the
@@ -100,14 +82,14 @@ namespace app
     {
       const coupling::CaseParameters &p = case_file.parameters;
       CurveLabels labels;
-      labels.group            = p.rock.group;
+      labels.group            = p.rock_case.group;
       labels.particle_spacing = p.sph.spacing;
       if (p.test != "UCS" && p.test != "BTS")
         return labels;
       try
       {
         const diagnose::MaterialTable table = diagnose::MaterialTable::read(data_directory_of(case_file));
-        if (const diagnose::MaterialGroup *group = table.lookup(p.rock.group))
+        if (const diagnose::MaterialGroup *group = table.lookup(p.rock_case.group))
         {
           labels.source = "Table 3";
           if (p.test == "UCS")
