@@ -93,7 +93,7 @@ namespace app
       std::string line;
       while (std::getline(in, line))
       {
-        const std::string t = diagnose::trim(line);
+        const std::string t = diagnose::trim(diagnose::strip_prm_comment(line));
         if (t.rfind("subsection ", 0) == 0)
           sections.push_back(diagnose::trim(t.substr(11)));
         else if (t == "end" && !sections.empty())

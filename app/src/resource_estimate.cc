@@ -114,6 +114,10 @@ namespace app
       source = "the limit of " + format_bytes(*limit_bytes);
     if (e.bytes <= *limit_bytes)
       return;
+    if (*limit_bytes < 1.1 * base_bytes)
+      throw InputError(what + " needs about " + format_bytes(e.bytes) + " of memory; " + source +
+                       " is below the " + format_bytes(base_bytes) +
+                       " the program needs without particles (raise it with " + allow_option + ")");
     // rounded up so that the spacing named fits
     const double finest = 1.005 * finest_spacing_within(e.volume, *limit_bytes);
     const std::string steps = e.n_steps > 0 ? format_number(e.n_steps) + " time steps and " : std::string("and ");

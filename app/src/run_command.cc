@@ -425,7 +425,7 @@ namespace app
              << json_string("cosim run --restart " + shell_word(destination.string())) << "\n}\n";
         write_text_file((staging / "summary.json").string(), json.str());
         const fs::path published = folder.publish(ResultStatus::interrupted, replace, destination);
-        if (!quiet)
+        if (!interrupted_into) // a study says it in its own words
           std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
                        clip(e.what()).c_str(), clip((published / "checkpoint.h5").string()).c_str(),
                        shell_word(published.string()).c_str());

@@ -419,8 +419,9 @@ namespace app
         Run &run = runs[i];
         if (StopSignals::received() != 0)
           break; // stopped between runs: the rest are not run
-        run.status =
-          run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary);
+        fs::path interrupted_folder;
+        run.status = run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary, "",
+                                     &interrupted_folder);
         any_unstable = any_unstable || run.status == 3;
         if (run.status == 4)
         {

@@ -202,4 +202,22 @@ namespace diagnose
     }
     return out;
   }
+  std::string strip_prm_comment(const std::string &line)
+  {
+    std::string out;
+    for (std::size_t i = 0; i < line.size(); ++i)
+    {
+      if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '#')
+      {
+        out += '#';
+        ++i;
+      }
+      else if (line[i] == '#')
+        break;
+      else
+        out += line[i];
+    }
+    const auto last = out.find_last_not_of(" \t");
+    return last == std::string::npos ? std::string() : out.substr(0, last + 1);
+  }
 } // namespace diagnose

@@ -15,11 +15,12 @@
 namespace app
 {
   /// Marginal memory of one rock particle with its share of the FEM platens, neighbour lists,
-  /// snapshots and checkpoint copies [bytes], measured as peak RSS (/usr/bin/time -v) of the
-  /// default UCS case at 5, 2.5 and 2 mm spacing: (255.0 - 211.0) MB over 11,978 more particles.
-  constexpr double bytes_per_particle = 3800;
-  /// Memory of a run with no particles (program, libraries, deal.II, PETSc) [bytes].
-  constexpr double base_bytes = 170e6;
+  /// snapshots and history [bytes]: the peak RSS (/usr/bin/time -v) of the default UCS case, one
+  /// thread, at 5, 2.5 and 2 mm spacing (1,600, 12,640, 24,450 particles: 173.4, 207.6, 246.9
+  /// MiB) grows by 3,170 and 3,410 B per particle; the larger, rounded up.
+  constexpr double bytes_per_particle = 3500;
+  /// Memory of a run with (almost) no particles: program, libraries, deal.II, PETSc [bytes].
+  constexpr double base_bytes = 175e6;
 
   /// The cost of one case, before it runs.
   struct ResourceEstimate

@@ -44,8 +44,12 @@ namespace diagnose
   /// not (std::strtod accepts them).
   bool is_decimal_number(const std::string &text);
 
-  /// `value` written for a deal.II parameter file: every `#` (which starts a comment there)
-  /// written as `\#`, which deal.II reads back as `#`, so that a path with `#` survives
-  /// used_parameters.prm and --restart.
+  /// `value` written for a parameter file: every `#` (which starts a comment there) written as
+  /// `\#`, so that a path with `#` survives used_parameters.prm and --restart. deal.II 9.4 does
+  /// not read `\#` back by itself: the reader passes each line through strip_prm_comment first.
   std::string escape_prm_value(const std::string &value);
+
+  /// One line of a parameter file without its comment: everything from the first `#` that is
+  /// not escaped as `\#`, trailing blanks included, removed; each `\#` turned into `#`.
+  std::string strip_prm_comment(const std::string &line);
 } // namespace diagnose
