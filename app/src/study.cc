@@ -349,13 +349,13 @@ namespace app
     if (!options.groups.empty())
     {
       Dimension g{"Rock/Group", {}};
-      if (g.values.empty() && options.groups != "all")
-        throw InputError("cosim study: --groups has no names; e.g. M1,M2 or all");
       if (options.groups == "all")
         for (const auto &m : table.groups())
           g.values.push_back(m.group);
       else
         g.values = split_list(options.groups);
+      if (g.values.empty())
+        throw InputError("cosim study: --groups has no names; e.g. M1,M2 or all");
       for (const auto &v : g.values)
         if (v.empty())
           throw InputError("cosim study: --groups '" + diagnose::clip(options.groups) +

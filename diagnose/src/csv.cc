@@ -173,7 +173,7 @@ namespace diagnose
     const auto value = parse_finite_double(t);
     if (!value)
       throw InputError(where(row) + ": column " + clip(column) + " = '" + clip(t) +
-                       "' is not a finite decimal number; write a number, or leave the cell empty where unknown");
+                       "' is not a finite number (decimal, e.g. 97.07); write a number, or leave the cell empty where unknown");
     return value;
   }
 
@@ -183,7 +183,7 @@ namespace diagnose
     const auto value = parse_finite_double(t);
     if (!value)
       throw InputError(where(row) + ": column " + clip(column) + " = '" + clip(t) +
-                       "' is not a finite decimal number; this column needs a number in every row");
+                       "' is not a finite number (decimal, e.g. 97.07); this column needs a number in every row");
     return *value;
   }
 } // namespace diagnose
