@@ -805,8 +805,8 @@ TEST(HostileInput, DiagnoseHugeSecondFolderClipped)
 }
 
 // Case-file fixes: the helpers exist (diagnose/text_input.h); these pass once app/src/case_file.cc
-// reads the file through diagnose::read_text_file, numbers through is_decimal_number, and writes and
-// reads values with escape_prm_value / strip_prm_comment.
+// reads the file through diagnose::read_text_file (BOM), refuses an extension other than .prm in
+// its own words, and writes and reads values with escape_prm_value / strip_prm_comment (`#`).
 TEST(HostileCaseFile, DISABLED_CaseFileWithBomAccepted)
 {
   Sandbox box;
@@ -814,14 +814,18 @@ TEST(HostileCaseFile, DISABLED_CaseFileWithBomAccepted)
   EXPECT_EQ(run_at(box.dir(), quick({"run", "c.prm", "-o", "out"})).status, 0);
 }
 
-TEST(HostileCaseFile, DISABLED_CaseFileWithCrlfAccepted)
+TEST(HostileInput, HexNumberInCaseFileIsOneShortLine)
 {
   Sandbox box;
-  box.write("c.prm", replace_all(read_file(ucs_case), "\n", "\r\n"));
-  EXPECT_EQ(run_at(box.dir(), quick({"run", "c.prm", "-o", "out"})).status, 0);
+  std::string text = read_file(ucs_case);
+  const auto at = text.find("set CSLH");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(text.find('=', at), text.find('\n', at) - text.find('=', at), "= 0x1p0");
+  box.write("c.prm", text);
+  expect_refused(box.dir(), quick({"run", "c.prm", "-o", "out"}), {"SPH/CSLH", "0x1p0"});
 }
 
-TEST(HostileCaseFile, DISABLED_HexNumberInCaseFileIsOneShortLine)
+TEST(HostileInput, HexNumberInSetIsOneShortLine)
 {
   Sandbox box;
   expect_refused(box.dir(), quick({"run", ucs_case, "--set", "SPH/CSLH=0x1p0"}), {"SPH/CSLH", "0x1p0"});
@@ -831,7 +835,11 @@ TEST(HostileCaseFile, DISABLED_UnknownExtensionIsOneShortLine)
 {
   Sandbox box;
   box.write("c.txt", read_file(ucs_case));
-  expect_refused(box.dir(), quick({"run", "c.txt", "-o", "out"}), {"c.txt"});
+  const Result r = run_at(box.dir(), quick({"run", "c.txt", "-o", "out"}));
+  EXPECT_EQ(r.status, 2);
+  expect_one_short_line(r);
+  EXPECT_NE(r.err.find(".prm"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Stacktrace"), std::string::npos) << "a message, not a library dump: " << r.err;
 }
 
 TEST(HostileCaseFile, DISABLED_HashInDataDirectorySurvivesRestart)
