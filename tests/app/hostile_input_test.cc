@@ -124,7 +124,7 @@ namespace
         _exit(127);
       const int null = open("/dev/null", O_WRONLY);
       dup2(null, 1);
-      const int err = open((dir.string() + ".spawn-err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = open((dir / "spawn-err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       dup2(err, 2);
       std::vector<char *> argv;
       argv.push_back(const_cast<char *>(binary.c_str()));
@@ -887,8 +887,7 @@ TEST(HostileSignals, StudyReportsAnInterruption)
   ASSERT_TRUE(wait_for([&] { return staging_checkpoint(box.dir()); }, 120));
   kill(pid, SIGTERM);
   EXPECT_EQ(reap(pid), 4) << "an interruption, not an unstable run";
-  const std::string err = read_file(box.dir().string() + ".spawn-err");
-  fs::remove(box.dir().string() + ".spawn-err");
+  const std::string err = read_file(box.dir() / "spawn-err.txt");
   EXPECT_NE(err.find("interrupted"), std::string::npos) << err;
   EXPECT_EQ(err.find("unstable"), std::string::npos) << err;
   EXPECT_NE(read_file(box.dir() / "s" / "study.csv").find("interrupted"), std::string::npos);
