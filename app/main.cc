@@ -12,8 +12,10 @@
 #include <app/run_command.h>
 #include <app/study.h>
 #include <coupling/errors.h>
+#include <diagnose/text_input.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <string>
@@ -65,18 +67,33 @@ namespace
             "\n"
             "  cosim --version    the version and the commit it was built from\n"
             "\n"
-            "Exit status: 0 done, 2 bad input, 3 unstable run, 1 other failure.\n";
+            "Exit status: 0 done, 2 bad input, 3 unstable run, 4 interrupted by a signal, 1 other failure.\n";
     return text;
   }
 
-  /// One line on stderr: newlines of a message folded into spaces.
+  /// One line on stderr, the last guard of the one-line contract: newlines folded into spaces,
+  /// control and non-UTF-8 bytes (NUL included) shown as \xNN, at most ~600 characters (three
+  /// clipped echoes of input and the text around them).
   void error_line(const std::string &message)
   {
     std::string line = message;
     for (auto &ch : line)
       if (ch == '\n' || ch == '\r')
         ch = ' ';
-    std::fprintf(stderr, "cosim: %s\n", line.c_str());
+    line = diagnose::clip(line, 600);
+    std::fwrite("cosim: ", 1, 7, stderr);
+    std::fwrite(line.data(), 1, line.size(), stderr);
+    std::fputc('\n', stderr);
+  }
+
+  /// Ends the process with `status` after an error without running atexit handlers: a library
+  /// (HDF5) whose file was left open by a failed write would otherwise flush it again at exit,
+  /// into a folder already removed, and crash. Everything of ours is cleaned up by then.
+  [[noreturn]] void exit_after_error(const int status)
+  {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(status);
   }
 } // namespace
 
@@ -107,7 +124,7 @@ int main(int argc, char **argv)
     std::string names;
     for (const auto &n : command_names())
       names += (names.empty() ? "" : ", ") + n;
-    error_line("unknown subcommand '" + args[0] + "'" + app::did_you_mean(args[0], command_names()) +
+    error_line("unknown subcommand '" + diagnose::clip(args[0]) + "'" + app::did_you_mean(args[0], command_names()) +
                "; accepted: " + names + " (cosim --help)");
     return 2;
   }
@@ -118,28 +135,30 @@ int main(int argc, char **argv)
       std::fputs(command->help().c_str(), stdout);
       return 0;
     }
+  int status = 0;
   try
   {
-    return command->main(rest);
+    status = command->main(rest);
   }
   catch (const coupling::InputError &e)
   {
     error_line(e.what());
-    return 2;
+    exit_after_error(2);
   }
   catch (const coupling::InstabilityError &e)
   {
     error_line(std::string("unstable run: ") + e.what());
-    return 3;
+    exit_after_error(3);
   }
   catch (const std::bad_alloc &)
   {
-    error_line("out of memory (try a coarser SPH/Particle spacing)");
-    return 1;
+    error_line("out of memory (try a coarser SPH/Particle spacing, or see --memory-limit)");
+    exit_after_error(1);
   }
   catch (const std::exception &e)
   {
     error_line(std::string("error: ") + e.what());
-    return 1;
+    exit_after_error(1);
   }
+  return status;
 }

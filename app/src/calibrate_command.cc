@@ -2,6 +2,7 @@
 // strengths or for every group of a data folder.
 #include <app/calibrate_command.h>
 #include <app/cli.h>
+#include <diagnose/text_input.h>
 #include <app/paths.h>
 #include <coupling/errors.h>
 #include <diagnose/calibrate.h>
@@ -72,7 +73,7 @@ namespace app
       else if (a == "--brazilian")
         brazilian = true;
       else
-        throw InputError("cosim calibrate: unknown option '" + a + "'" +
+        throw InputError("cosim calibrate: unknown option '" + diagnose::clip(a) + "'" +
                          did_you_mean(a, {"--group", "--ucs", "--bts", "--brazilian", "--data", "--csv", "--help"}) +
                          "; accepted: --group, --ucs, --bts, --brazilian, --data, --csv");
     }

@@ -1,5 +1,6 @@
 #include <app/cli.h>
 #include <diagnose/csv.h>
+#include <diagnose/text_input.h>
 #include <coupling/run_case.h>
 
 #include <algorithm>
@@ -87,15 +88,22 @@ namespace app
 
   std::string ArgumentCursor::value(const std::string &option)
   {
+    std::string v;
     if (has_pending_value_)
     {
       has_pending_value_ = false;
-      return pending_value_;
+      v                  = pending_value_;
     }
-    if (done())
+    else if (done())
       throw InputError("cosim " + command_ + ": option " + option + " needs a value (see cosim " +
                        command_ + " --help)");
-    return args_[i_++];
+    else
+      v = args_[i_++];
+    // an empty value is never meant: refuse it rather than fall back to a default silently
+    if (diagnose::trim(v).empty())
+      throw InputError("cosim " + command_ + ": option " + option + " has an empty value (see cosim " + command_ +
+                       " --help)");
+    return v;
   }
 
   double ArgumentCursor::number(const std::string &option)
@@ -103,7 +111,7 @@ namespace app
     const std::string text = value(option);
     const auto v = parse_finite_double(text);
     if (!v)
-      throw InputError("cosim " + command_ + ": " + option + " '" + text +
+      throw InputError("cosim " + command_ + ": " + option + " '" + diagnose::clip(text) +
                        "' is not a finite number (see cosim " + command_ + " --help)");
     return *v;
   }

@@ -1,11 +1,15 @@
 // `cosim diagnose DATA_DIR`: options, then the diagnosis (diagnose/), its files and plots.
 #include <app/cli.h>
+#include <diagnose/text_input.h>
 #include <app/diagnose_command.h>
 #include <app/output_writer.h>
+#include <app/resource_estimate.h>
+#include <app/result_folder.h>
 #include <coupling/errors.h>
 #include <diagnose/csv.h>
 #include <diagnose/diagnose.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -40,7 +44,8 @@ namespace app
            "\n"
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
-           "  --force              replace an existing OUTDIR\n"
+           "  --force              replace an existing OUTDIR written by cosim\n"
+           "  --memory-limit GIB   memory a coupled run may use (default 90 % of the available memory)\n"
            "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
            "  --coupled-spacing DX also run the coupled simulator (run_case, spacing DX [m]) on "
            "the\n"
@@ -53,6 +58,7 @@ namespace app
   {
     std::string data_dir, out_dir = "results/diagnose";
     bool force = false;
+    std::optional<double> memory_limit;
     diagnose::Options options;
     for (std::size_t i = 0; i < args.size(); ++i)
     {
@@ -60,12 +66,21 @@ namespace app
       const auto next      = [&]() -> std::string {
         if (i + 1 >= args.size())
           throw InputError("cosim diagnose: " + a + " needs a value");
+        if (diagnose::trim(args[i + 1]).empty())
+          throw InputError("cosim diagnose: option " + a + " has an empty value (see cosim diagnose --help)");
         return args[++i];
       };
       if (a == "-o" || a == "--output")
         out_dir = next();
       else if (a == "--force")
         force = true;
+      else if (a == "--memory-limit")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || !(*v > 0 && *v < 1e6))
+          throw InputError("cosim diagnose: --memory-limit takes the memory a coupled run may use in GiB, a number > 0");
+        memory_limit = *v * 1024.0 * 1024.0 * 1024.0;
+      }
       else if (a == "--bic-threshold")
       {
         const auto v = parse_finite_double(next());
@@ -82,34 +97,45 @@ namespace app
         options.coupled_spacing = *v;
       }
       else if (!a.empty() && a[0] == '-')
-        throw InputError("cosim diagnose: unknown option '" + a + "'" +
+        throw InputError("cosim diagnose: unknown option '" + diagnose::clip(a) + "'" +
                          did_you_mean(a, {"--output", "--force", "--bic-threshold",
-                                          "--coupled-spacing", "--help"}) +
-                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX");
+                                          "--coupled-spacing", "--memory-limit", "--help"}) +
+                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX, --memory-limit GIB");
       else if (data_dir.empty())
         data_dir = a;
       else
-        throw InputError("cosim diagnose: one DATA_DIR only (got '" + data_dir + "' and '" + a +
-                         "')");
+        throw InputError("cosim diagnose: one DATA_DIR only (got '" + diagnose::clip(data_dir) + "' and '" +
+                         diagnose::clip(a) + "')");
     }
     if (data_dir.empty())
       throw InputError(
         "cosim diagnose: give the measured-data folder: cosim diagnose DATA_DIR [-o OUTDIR]");
-    if (fs::exists(out_dir) && !force)
-      throw InputError(out_dir +
-                       " already exists; use --force to replace it, or -o to choose another");
-    const diagnose::Data data   = diagnose::read_data(data_dir);
+    const fs::path target = check_result_folder(out_dir, force, {fs::path(data_dir)});
+    const diagnose::Data data = diagnose::read_data(data_dir);
+    if (options.coupled_spacing > 0)
+    {
+      // the coupled runs model the largest specimen of the curves (a 50 x 100 mm core without)
+      double volume = 3.14159265358979 / 4 * 0.05 * 0.05 * 0.1;
+      for (const auto &c : data.curves)
+        volume = std::max(volume, 3.14159265358979 / 4 * c.diameter * c.diameter * c.length * 1e-9);
+      char what[64];
+      std::snprintf(what, sizeof what, "--coupled-spacing %g m", options.coupled_spacing);
+      check_resources(estimate_for_volume(volume, options.coupled_spacing), what, memory_limit,
+                      "--memory-limit GIB");
+    }
     const diagnose::Diagnosis d = diagnose::diagnose(data, options);
-    const fs::path out(out_dir);
+    ResultFolder folder(target, "diagnose");
+    const fs::path out = folder.staging();
     diagnose::write_report(out, d, data_dir);
     const std::string why = run_plot_script("plot_diagnosis.py", {out.string()}, (out / "envelope.png").string());
     if (!why.empty())
       std::fprintf(stderr, "cosim diagnose: plots skipped: %s\n", why.c_str());
+    const fs::path published = folder.publish(ResultStatus::complete, force);
     std::string ids;
     for (const auto &i : d.identified)
       ids += (ids.empty() ? "" : ", ") + i;
     std::printf("identified: %s; gain %.3g (held-out %.3g); wrote %s\n", ids.c_str(), d.gain,
-                d.heldout_gain, out_dir.c_str());
+                d.heldout_gain, diagnose::clip(published.string()).c_str());
     return 0;
   }
 } // namespace app

@@ -4,14 +4,21 @@
 #include <app/output_writer.h>
 #include <app/progress.h>
 #include <app/paths.h>
+#include <app/resource_estimate.h>
+#include <app/result_folder.h>
+#include <diagnose/csv.h>
+#include <diagnose/text_input.h>
 #include <app/run_command.h>
 #include <coupling/run_case.h>
 #include <diagnose/material_table.h>
 
+#include <cctype>
 #include <chrono>
+#include <cstring>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
@@ -31,44 +38,51 @@ namespace app
   using coupling::find_extra;
 
   namespace fs = std::filesystem;
+  using diagnose::clip;
 
   namespace
   {
-    /// Set by SIGINT / SIGTERM, polled by the time loop once per step (async-signal-safe).
+    /// Set by SIGINT / SIGTERM / SIGHUP, polled by the time loop once per step
+    /// (async-signal-safe).
     volatile std::sig_atomic_t stop_signal = 0;
+    int stop_signals_depth                 = 0;
 
     extern "C" void on_stop_signal(int signal)
     {
       stop_signal = signal;
     }
+  } // namespace
 
-    /// Installs the stop handlers for the lifetime of a run; a second signal of the same kind
-    /// ends the process at once (SA_RESETHAND), for a user who cannot wait for the checkpoint.
-    class StopSignals
-    {
-    public:
-      StopSignals()
-      {
-        stop_signal = 0;
-        struct sigaction sa = {};
-        sa.sa_handler       = on_stop_signal;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = SA_RESETHAND;
-        sigaction(SIGINT, &sa, &old_int_);
-        sigaction(SIGTERM, &sa, &old_term_);
-      }
-      ~StopSignals()
-      {
-        sigaction(SIGINT, &old_int_, nullptr);
-        sigaction(SIGTERM, &old_term_, nullptr);
-      }
-      StopSignals(const StopSignals &)            = delete;
-      StopSignals &operator=(const StopSignals &) = delete;
+  StopSignals::StopSignals()
+  {
+    if (stop_signals_depth++ > 0)
+      return; // an outer command (a study) already handles them
+    stop_signal = 0;
+    struct sigaction sa = {};
+    sa.sa_handler       = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+    sigaction(SIGHUP, &sa, &old_hup_);
+  }
 
-    private:
-      struct sigaction old_int_ = {}, old_term_ = {};
-    };
+  StopSignals::~StopSignals()
+  {
+    if (--stop_signals_depth > 0)
+      return;
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGHUP, &old_hup_, nullptr);
+  }
 
+  int StopSignals::received()
+  {
+    return stop_signal;
+  }
+
+  namespace
+  {
     /// The folder of measured-data tables a case read: Rock/Data directory, else the shipped one.
     std::string data_directory_of(const CaseFile &case_file)
     {
@@ -113,16 +127,18 @@ namespace app
     class RecordingObserver : public RunObserver
     {
     public:
-      RecordingObserver(ResultsFile &results, ProgressDisplay &progress, const fs::path &folder)
+      RecordingObserver(ResultsFile &results, ProgressDisplay &progress, const fs::path &folder,
+                        const std::string &used_parameters)
         : results_(results)
         , progress_(progress)
         , folder_(folder)
+        , used_parameters_(used_parameters)
       {}
 
-      bool stop_requested() override { return stop_signal != 0; }
+      bool stop_requested() override { return StopSignals::received() != 0; }
       void checkpoint(std::size_t step, const StateArrays &state) override
       {
-        write_checkpoint((folder_ / "checkpoint.h5").string(), state);
+        write_checkpoint((folder_ / "checkpoint.h5").string(), state, used_parameters_);
         checkpoint_step = static_cast<long>(step);
       }
       void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) override
@@ -153,6 +169,7 @@ namespace app
       ResultsFile &results_;
       ProgressDisplay &progress_;
       fs::path folder_;
+      std::string used_parameters_;
     };
 
     struct RunOptions
@@ -161,6 +178,7 @@ namespace app
       std::string output;
       std::vector<std::string> overrides;
       std::string restart; ///< --restart DIR
+      std::optional<double> memory_limit; ///< --memory-limit GIB [bytes]
       bool force = false;
       bool quiet = false;
       bool print_parameters = false; ///< --print-parameters: print the default case file, run nothing
@@ -179,6 +197,8 @@ namespace app
           o.overrides.push_back(cursor.value(a));
         else if (a == "--restart")
           o.restart = cursor.value(a);
+        else if (a == "--memory-limit")
+          o.memory_limit = memory_limit_option(cursor, a);
         else if (a == "--force")
           o.force = true;
         else if (a == "--quiet" || a == "-q")
@@ -186,15 +206,15 @@ namespace app
         else if (a == "--print-parameters")
           o.print_parameters = true;
         else if (!a.empty() && a[0] == '-')
-          throw InputError("cosim run: unknown option '" + a + "'" +
-                           did_you_mean(a, {"--output", "--set", "--restart", "--force", "--quiet", "--print-parameters",
-                                           "--help"}) +
-                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --force, --quiet, "
-                           "--print-parameters");
+          throw InputError("cosim run: unknown option '" + diagnose::clip(a) + "'" +
+                           did_you_mean(a, {"--output", "--set", "--restart", "--memory-limit", "--force", "--quiet",
+                                            "--print-parameters", "--help"}) +
+                           "; accepted: -o OUTDIR, --set \"Section/Key=value\", --restart DIR, --memory-limit GIB, "
+                           "--force, --quiet, --print-parameters");
         else if (o.case_file.empty())
           o.case_file = a;
         else
-          throw InputError("cosim run: a second case file '" + a + "' (after '" + o.case_file +
+          throw InputError("cosim run: a second case file '" + clip(a) + "' (after '" + clip(o.case_file) +
                            "'); run takes one CASE.prm");
       }
       if (o.print_parameters)
@@ -202,12 +222,12 @@ namespace app
       if (!o.restart.empty())
       {
         if (!o.case_file.empty() || !o.overrides.empty())
-          throw InputError("cosim run --restart " + o.restart +
+          throw InputError("cosim run --restart " + clip(o.restart) +
                            ": takes no case file and no --set (the run continues with the "
-                           "parameters in " + o.restart + "/used_parameters.prm)");
+                           "parameters in " + clip(o.restart) + "/used_parameters.prm)");
         o.case_file = (fs::path(o.restart) / "used_parameters.prm").string();
         if (!fs::is_regular_file(o.case_file))
-          throw InputError("cosim run --restart " + o.restart + ": no used_parameters.prm there; "
+          throw InputError("cosim run --restart " + clip(o.restart) + ": no used_parameters.prm there; "
                            "give the output folder of an interrupted run");
         return o;
       }
@@ -218,57 +238,21 @@ namespace app
 
   } // namespace
 
-  fs::path check_output_folder(const std::string &output, const std::string &case_stem, const bool force,
-                               const std::string &restart)
+  std::optional<double> memory_limit_option(ArgumentCursor &cursor, const std::string &option)
   {
-    const fs::path out = fs::absolute(output.empty() ? fs::path("results") / case_stem : fs::path(output))
-                           .lexically_normal();
-    const fs::path target = out.has_filename() ? out : out.parent_path();
-    std::error_code ec;
-    if (fs::exists(target, ec) && !fs::is_directory(target, ec))
-      throw InputError("output folder " + target.string() + " is an existing file; choose another with -o");
-    const bool own_restart =
-      !restart.empty() && fs::equivalent(target, fs::path(restart), ec);
-    if (fs::exists(target, ec) && !force && !own_restart)
-      throw InputError("output folder " + target.string() +
-                       " already exists; use --force to replace it, or -o to choose another");
-    // the nearest existing ancestor must be a writable folder
-    fs::path ancestor = target.parent_path();
-    while (!ancestor.empty() && !fs::exists(ancestor, ec) && ancestor != ancestor.root_path())
-      ancestor = ancestor.parent_path();
-    if (!fs::is_directory(ancestor, ec))
-      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
-                       " is not a folder; choose a writable place with -o");
-    if (access(ancestor.c_str(), W_OK | X_OK) != 0)
-      throw InputError("output folder " + target.string() + ": " + ancestor.string() +
-                       " is not writable; choose a writable place with -o");
-    return target;
+    const double gib = cursor.number(option);
+    if (!(gib > 0 && gib < 1e6))
+      throw InputError(option + " takes the memory a run may use in GiB, a number > 0 (e.g. " + option + " 64)");
+    return gib * 1024.0 * 1024.0 * 1024.0;
   }
 
-  fs::path sibling(const fs::path &target, const std::string &tag)
+  void check_case_resources(const CaseFile &case_file, const std::optional<double> &memory_limit)
   {
-    fs::path candidate;
-    for (int i = 0;; ++i)
-    {
-      candidate = target.parent_path() /
-                  ("." + target.filename().string() + "." + tag + "-" + std::to_string(getpid()) +
-                   (i ? "-" + std::to_string(i) : ""));
-      if (!fs::exists(candidate))
-        return candidate;
-    }
-  }
-
-  void publish(const fs::path &staging, const fs::path &target)
-  {
-    if (fs::exists(target))
-    {
-      const fs::path old = sibling(target, "old");
-      fs::rename(target, old);
-      fs::rename(staging, target);
-      fs::remove_all(old);
-    }
-    else
-      fs::rename(staging, target);
+    char spacing[32];
+    std::snprintf(spacing, sizeof spacing, "%g", case_file.parameters.sph.spacing);
+    check_resources(estimate_resources(case_file.parameters),
+                    "SPH/Particle spacing = " + std::string(spacing) + " m (" + clip(case_file.parameters.name, 60) + ")",
+                    memory_limit, "--memory-limit GIB");
   }
 
   std::string run_help()
@@ -287,7 +271,11 @@ namespace app
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
            "  --set \"S/K=value\"    override one parameter (repeatable), e.g. --set \"SPH/Particle spacing=0.002\"\n"
-           "  --force              replace an existing OUTDIR (only once the run has succeeded)\n"
+           "  --force              replace an existing OUTDIR written by cosim (only once the run has\n"
+           "                       succeeded; never the working folder, its parents or a folder cosim\n"
+           "                       did not write)\n"
+           "  --memory-limit GIB   memory the run may use (default 90 % of the available memory); a case\n"
+           "                       whose estimate exceeds it is refused before it starts\n"
            "  --restart OUTDIR     continue an interrupted run from OUTDIR/checkpoint.h5 with\n"
            "                       OUTDIR/used_parameters.prm (into OUTDIR unless -o)\n"
            "  -q, --quiet          no progress display\n"
@@ -298,8 +286,9 @@ namespace app
            "failed run never leaves a half-written or half-replaced OUTDIR. An unstable run keeps what it\n"
            "has in OUTDIR.failed.\n"
            "\n"
-           "SIGINT / SIGTERM: the run stops after the current step, writes checkpoint.h5 and what it\n"
-           "has into OUTDIR, and exits with 4 (a second signal kills at once). Periodic checkpoints:\n"
+           "SIGINT / SIGTERM / SIGHUP: the run stops after the current step, writes checkpoint.h5 and what it\n"
+           "has into OUTDIR (OUTDIR.interrupted when OUTDIR holds another result), and exits with 4 (a\n"
+           "second signal kills at once). Periodic checkpoints:\n"
            "Output/Checkpoint interval (steps), Output/Checkpoint minutes.\n"
            "\n"
            "Exit status: 0 done, 2 bad input (one line on stderr, nothing written), 3 unstable run\n"
@@ -322,38 +311,52 @@ namespace app
     const CaseFile case_file = read_case_file(options.case_file, options.overrides);
     if (!options.restart.empty() && options.output.empty())
       options.output = options.restart; // a restart continues into its own folder
-    const fs::path target = check_output_folder(options.output, fs::path(options.case_file).stem().string(),
-                                                options.force, options.restart);
+    const std::string output =
+      options.output.empty() ? (fs::path("results") / fs::path(options.case_file).stem()).string() : options.output;
+    const fs::path target = check_result_folder(output, options.force, {fs::path(options.case_file)}, options.restart);
+    check_case_resources(case_file, options.memory_limit);
     for (const auto &w : case_file.warnings)
       std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
     return run_into_folder(case_file, target, options.force, options.quiet, nullptr, options.restart);
   }
 
+  std::string shell_word(const std::string &text)
+  {
+    bool plain = !text.empty();
+    for (const char ch : text)
+      plain = plain && (std::isalnum(static_cast<unsigned char>(ch)) || std::strchr("/._-+=:,@", ch));
+    if (plain)
+      return clip(text);
+    std::string out = "'";
+    for (const char ch : text)
+      out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return clip(out + "'");
+  }
+
   int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, const bool force,
-                      const bool quiet, Summary *result, const std::string &restart)
+                      const bool quiet, Summary *result, const std::string &restart,
+                      std::filesystem::path *interrupted_into)
   {
     StateArrays resume;
     if (!restart.empty())
-      resume = read_checkpoint((fs::path(restart) / "checkpoint.h5").string());
-
-    // Everything checked: from here on we write, but only into the staging folder.
-    std::error_code ec;
-    fs::path first_created; // the outermost folder we create for OUTDIR's parent, removed on failure
-    for (fs::path p = target.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path())
-      first_created = p;
-    fs::create_directories(target.parent_path(), ec);
-    const fs::path staging = sibling(target, "tmp");
-    auto clean_up = [&] {
-      fs::remove_all(staging, ec);
-      if (!first_created.empty())
-        fs::remove_all(first_created, ec);
-    };
-    if (!fs::create_directory(staging, ec))
     {
-      clean_up();
-      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() + " (" +
-                       ec.message() + "); choose a writable place with -o");
+      // the checkpoint must belong to this folder's case, as used_parameters.prm holds it now
+      const fs::path prm = fs::path(restart) / "used_parameters.prm";
+      std::ifstream in(prm, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      const std::string used = text.str();
+      resume = read_checkpoint((fs::path(restart) / "checkpoint.h5").string(), &used);
     }
+    std::error_code ec;
+    const bool own_restart = !restart.empty() && fs::exists(target, ec) && fs::equivalent(target, restart, ec);
+
+    // Signals first: from the moment the folder is claimed, a SIGINT / SIGTERM / SIGHUP ends the
+    // run through the checkpoint path, never with a half-written staging folder.
+    const StopSignals stop_signals;
+    // Everything checked: from here on we write, but only into the staging folder.
+    ResultFolder folder(target, "run");
+    const fs::path &staging = folder.staging();
     try
     {
       write_text_file((staging / "used_parameters.prm").string(), case_file.used_parameters);
@@ -366,8 +369,7 @@ namespace app
         if (scalars != resume.end() && !scalars->second.empty())
           results.copy_snapshots((fs::path(restart) / "results.h5").string(), scalars->second[0]);
       }
-      RecordingObserver observer(results, progress, staging);
-      const StopSignals stop_signals;
+      RecordingObserver observer(results, progress, staging, case_file.used_parameters);
       const auto start = std::chrono::steady_clock::now();
       auto write_all = [&](const Summary *summary, const RunEnd &end) {
         write_text_file((staging / "summary.json").string(), summary_json(summary, end));
@@ -399,7 +401,10 @@ namespace app
         if (summary.wall_seconds <= 0)
           summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         write_all(&summary, RunEnd{});
-        publish(staging, target);
+        const fs::path published = folder.publish(ResultStatus::complete, force || own_restart);
+        if (published != target)
+          std::fprintf(stderr, "cosim: warning: %s appeared during the run and is not cosim's to replace; "
+                       "the results are in %s\n", clip(target.string()).c_str(), clip(published.string()).c_str());
         if (result)
           *result = summary;
         if (!quiet)
@@ -410,10 +415,11 @@ namespace app
           if (mean_normal && peak_normal)
             std::fprintf(stderr, "cosim: %s: normal force mean %.1f kN, peak %.1f kN, %zu steps, %.1f s -> %s\n",
                          summary.test.c_str(), *mean_normal, *peak_normal, summary.n_steps, summary.wall_seconds,
-                         target.c_str());
+                         clip(published.string()).c_str());
           else
             std::fprintf(stderr, "cosim: %s: peak %.2f MPa, %zu steps, %.1f s -> %s\n", summary.test.c_str(),
-                         summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds, target.c_str());
+                         summary.peak_stress * 1e-6, summary.n_steps, summary.wall_seconds,
+                         clip(published.string()).c_str());
         }
         return 0;
       }
@@ -431,20 +437,20 @@ namespace app
         write_text_file((staging / "failure.txt").string(), std::string(e.what()) + "\n");
         fs::path failed = target;
         failed += ".failed";
-        if (fs::exists(failed))
-        {
-          if (force)
-            fs::remove_all(failed);
-          else
-            failed = sibling(failed, "new");
-        }
-        fs::rename(staging, failed);
-        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", e.what(), failed.c_str());
+        failed = folder.publish(ResultStatus::failed, force, failed);
+        std::fprintf(stderr, "cosim: unstable run: %s (what it had is in %s)\n", clip(e.what()).c_str(),
+                     clip(failed.string()).c_str());
         return 3;
       }
       catch (const RunInterrupted &e)
       {
         progress.finish();
+        // an interrupted run never replaces a result other than the one it continues: with the
+        // target taken, it goes to OUTDIR.interrupted
+        fs::path destination = target;
+        if (fs::exists(fs::symlink_status(target, ec)) && !own_restart)
+          destination += ".interrupted";
+        const bool replace = own_restart || result_status(destination) == ResultStatus::interrupted;
         RunEnd end;
         end.status          = RunStatus::interrupted;
         end.message         = e.what();
@@ -452,18 +458,32 @@ namespace app
         end.wall_seconds    = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         end.n_steps         = observer.checkpoint_step;
         end.checkpoint      = "checkpoint.h5";
-        end.restart_command = "cosim run --restart " + target.string();
+        end.restart_command = "cosim run --restart " + shell_word(destination.string());
         write_all(nullptr, end);
-        publish(staging, target);
-        std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
-                     e.what(), (target / "checkpoint.h5").c_str(), target.c_str());
+        const fs::path published = folder.publish(ResultStatus::interrupted, replace, destination);
+        if (!interrupted_into) // a study says it in its own words
+          std::fprintf(stderr, "cosim: %s; checkpoint in %s; continue with: cosim run --restart %s\n",
+                       clip(e.what()).c_str(), clip((published / "checkpoint.h5").string()).c_str(),
+                       shell_word(published.string()).c_str());
+        if (interrupted_into)
+          *interrupted_into = published;
         return 4;
       }
     }
-    catch (...)
+    catch (const std::bad_alloc &)
     {
-      clean_up();
       throw;
+    }
+    catch (const InputError &)
+    {
+      throw;
+    }
+    catch (const std::runtime_error &e)
+    {
+      // I/O failures while writing (disk full, quota, a folder removed under us): one line
+      // naming the folder; the staging folder is removed by ResultFolder
+      throw std::runtime_error("writing the results of " + clip(target.string()) + " failed: " + clip(e.what()) +
+                               " (disk full or not writable?)");
     }
   }
 } // namespace app

@@ -1,10 +1,13 @@
 #include <app/case_file.h>
 #include <app/cli.h>
+#include <diagnose/text_input.h>
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
 #include <app/output_writer.h>
 #include <app/paths.h>
 #include <coupling/run_case.h>
+#include <app/resource_estimate.h>
+#include <app/result_folder.h>
 #include <app/run_command.h>
 #include <app/study.h>
 
@@ -46,6 +49,7 @@ namespace app
       std::vector<std::string> overrides;
       std::vector<Dimension> vary; ///< first one is the x-axis of the plot
       std::string groups;          ///< "" none, "all", or "M1,M2,..."
+      std::optional<double> memory_limit; ///< --memory-limit GIB [bytes]
       bool force = false;
       bool quiet = false;
     };
@@ -72,18 +76,21 @@ namespace app
       std::string pending_key; // a --key waiting for its --values
       auto add = [&](const std::string &key, const std::string &list, const std::string &option) {
         const std::vector<std::string> values = split_list(list);
+        if (values.empty())
+          throw InputError("cosim study: " + option + " for '" + diagnose::clip(key) +
+                           "' has no values; give comma-separated values, e.g. 0.005,0.004,0.003");
         if (key.empty() || key.find('/') == std::string::npos)
           throw InputError(
-            "cosim study: " + option + ": '" + key +
+            "cosim study: " + option + ": '" + diagnose::clip(key) +
             "' is not a parameter key; write it as \"Section/Key\", e.g. \"SPH/Particle spacing\"");
         for (const auto &v : values)
           if (v.empty())
             throw InputError(
-              "cosim study: " + option + " for '" + key + "': '" + list +
+              "cosim study: " + option + " for '" + diagnose::clip(key) + "': '" + diagnose::clip(list) +
               "' has an empty value; give comma-separated values, e.g. 0.005,0.004,0.003");
         for (const auto &d : o.vary)
           if (d.key == key)
-            throw InputError("cosim study: key '" + key +
+            throw InputError("cosim study: key '" + diagnose::clip(key) +
                              "' is varied twice; give all its values in one list");
         o.vary.push_back({key, values});
       };
@@ -116,26 +123,28 @@ namespace app
           const std::string spec = cursor.value(a);
           const auto eq          = spec.find('=');
           if (eq == std::string::npos)
-            throw InputError("cosim study: --vary '" + spec +
+            throw InputError("cosim study: --vary '" + diagnose::clip(spec) +
                              "' has no '='; write \"Section/Key=a,b,c\"");
           add(trim(spec.substr(0, eq)), spec.substr(eq + 1), "--vary");
         }
         else if (a == "--groups")
           o.groups = trim(cursor.value(a));
+        else if (a == "--memory-limit")
+          o.memory_limit = memory_limit_option(cursor, a);
         else if (a == "--force")
           o.force = true;
         else if (a == "--quiet" || a == "-q")
           o.quiet = true;
         else if (!a.empty() && a[0] == '-')
           throw InputError(
-            "cosim study: unknown option '" + a + "'" +
+            "cosim study: unknown option '" + diagnose::clip(a) + "'" +
             did_you_mean(a, {"--output", "--set", "--key", "--values", "--vary", "--groups",
                              "--force", "--quiet", "--help"}) +
             "; accepted: -o, --set, --key, --values, --vary, --groups, --force, --quiet");
         else if (o.case_file.empty())
           o.case_file = a;
         else
-          throw InputError("cosim study: a second case file '" + a + "' (after '" + o.case_file +
+          throw InputError("cosim study: a second case file '" + diagnose::clip(a) + "' (after '" + diagnose::clip(o.case_file) +
                            "'); study takes one CASE.prm");
       }
       if (!pending_key.empty())
@@ -307,8 +316,9 @@ namespace app
            "folder)\n"
            "  -o, --output OUTDIR           result folder; never replaced without --force\n"
            "  --set \"S/K=value\"             a fixed override for every run (repeatable)\n"
-           "  --force                       replace an existing OUTDIR (only once the study has "
-           "ended)\n"
+           "  --force                       replace an existing OUTDIR written by cosim (only once the "
+           "study has ended)\n"
+           "  --memory-limit GIB            memory a run may use (default 90 % of the available memory)\n"
            "  -q, --quiet                   no line per run\n"
            "\n"
            "Every combination is read and checked before the first run: a bad key or value stops "
@@ -319,8 +329,13 @@ namespace app
            "  cosim study cases/bts/bts.prm --key \"SPH/CSLH\" --values 1.05,1.2,1.3 -o "
            "results/bts-cslh\n"
            "\n"
-           "Exit status: 0 done, 2 bad input, 3 some runs unstable (marked in study.csv), 1 other "
-           "failure.\n";
+           "SIGINT / SIGTERM / SIGHUP: the run in progress stops with its checkpoint, the study "
+           "stops after it and\n"
+           "writes study.csv (status interrupted / not run) into OUTDIR (OUTDIR.interrupted when "
+           "OUTDIR exists).\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input, 3 some runs unstable (marked in study.csv), 4 "
+           "interrupted, 1 other failure.\n";
   }
 
   int study_main(const std::vector<std::string> &args)
@@ -339,9 +354,11 @@ namespace app
           g.values.push_back(m.group);
       else
         g.values = split_list(options.groups);
+      if (g.values.empty())
+        throw InputError("cosim study: --groups has no names; e.g. M1,M2 or all");
       for (const auto &v : g.values)
         if (v.empty())
-          throw InputError("cosim study: --groups '" + options.groups +
+          throw InputError("cosim study: --groups '" + diagnose::clip(options.groups) +
                            "' has an empty name; e.g. M1,M2 or all");
       dims.push_back(g);
     }
@@ -368,6 +385,7 @@ namespace app
       std::snprintf(prefix, sizeof prefix, "%02zu-", runs.size() + 1);
       run.folder    = prefix + folder;
       run.case_file = read_case_file(options.case_file, overrides);
+      check_case_resources(run.case_file, options.memory_limit);
       run.reference =
         reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock_case.group));
       runs.push_back(std::move(run));
@@ -382,27 +400,34 @@ namespace app
         index[d] = 0;
       }
     }
-    const fs::path target = check_output_folder(
-      options.output.empty() ? "results/study-" + stem : options.output, stem, options.force);
+    const fs::path target = check_result_folder(
+      options.output.empty() ? "results/study-" + stem : options.output, options.force,
+      {fs::path(options.case_file), fs::path(data_directory_of(base))});
     for (const auto &w : base.warnings)
       std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
 
-    // Everything checked: write into the staging folder only.
-    std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
-    const fs::path staging = sibling(target, "tmp");
-    if (!fs::create_directory(staging, ec))
-      throw InputError("output folder " + target.string() + ": cannot create " + staging.string() +
-                       " (" + ec.message() + "); choose a writable place with -o");
-    try
+    // Everything checked: write into the staging folder only. A signal stops the run in progress
+    // (its checkpoint kept in the study folder) and the study after it.
+    const StopSignals stop_signals;
+    ResultFolder folder(target, "study");
+    const fs::path &staging = folder.staging();
     {
-      bool any_unstable = false;
+      bool any_unstable         = false;
+      std::size_t interrupted_at = runs.size();
       for (std::size_t i = 0; i < runs.size(); ++i)
       {
         Run &run = runs[i];
-        run.status =
-          run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary);
-        any_unstable = any_unstable || run.status != 0;
+        if (StopSignals::received() != 0)
+          break; // stopped between runs: the rest are not run
+        fs::path interrupted_folder;
+        run.status = run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary, "",
+                                     &interrupted_folder);
+        any_unstable = any_unstable || run.status == 3;
+        if (run.status == 4)
+        {
+          interrupted_at = i;
+          break;
+        }
         if (!options.quiet)
         {
           std::string what;
@@ -416,9 +441,9 @@ namespace app
                          100 * (run.summary.peak_stress / run.reference.measured - 1),
                          run.reference.measured * 1e-6, run.reference.description.c_str(),
                          run.summary.n_steps, run.summary.wall_seconds);
-          else
+          else if (run.status == 3)
             std::fprintf(stderr, "cosim study: [%zu/%zu] %s: unstable (see %s.failed)\n", i + 1,
-                         runs.size(), what.c_str(), run.folder.c_str());
+                         runs.size(), what.c_str(), diagnose::clip((target / run.folder).string()).c_str());
         }
       }
 
@@ -480,7 +505,8 @@ namespace app
         else
           csv << ",," << number(run.reference.measured * 1e-6) << ",,"
               << number(run.reference.envelope * 1e-6) << "," << cell(run.reference.description)
-              << ",,,,,,,,,,,,,,unstable";
+              << ",,,,,,,,,,,,,,"
+              << (run.status == 3 ? "unstable" : run.status == 4 ? "interrupted" : "not run");
         for (const auto &c : extra_columns)
         {
           csv << ",";
@@ -498,17 +524,33 @@ namespace app
         plot_study(staging / "study.csv", staging / "study.png", plot_columns);
       if (!why.empty())
         std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
-      publish(staging, target);
+      if (interrupted_at < runs.size() || StopSignals::received() != 0)
+      {
+        // never replaces a result: OUTDIR when free, else OUTDIR.interrupted
+        std::error_code ec;
+        fs::path destination = target;
+        if (fs::exists(fs::symlink_status(target, ec)))
+          destination += ".interrupted";
+        const fs::path published = folder.publish(ResultStatus::interrupted,
+                                                  result_status(destination) == ResultStatus::interrupted,
+                                                  destination);
+        std::size_t n_done = 0;
+        for (const auto &run : runs)
+          n_done += run.status == 0 || run.status == 3;
+        std::string how;
+        if (interrupted_at < runs.size())
+          how = "; continue run " + runs[interrupted_at].folder + " with: cosim run --restart " +
+                shell_word((published / runs[interrupted_at].folder).string());
+        std::fprintf(stderr, "cosim study: interrupted by a signal after %zu of %zu runs; study.csv and the runs "
+                     "are in %s%s\n", n_done, runs.size(), diagnose::clip(published.string()).c_str(), how.c_str());
+        return 4;
+      }
+      const fs::path published = folder.publish(ResultStatus::complete, options.force);
       if (!options.quiet && n_ok > 0)
         std::fprintf(stderr,
                      "cosim study: %zu runs, mean |error| %.2f %%, max |error| %.2f %% -> %s\n",
-                     runs.size(), sum_error / n_ok, max_error, target.c_str());
+                     runs.size(), sum_error / n_ok, max_error, diagnose::clip(published.string()).c_str());
       return any_unstable ? 3 : 0;
-    }
-    catch (...)
-    {
-      fs::remove_all(staging, ec);
-      throw;
     }
   }
 } // namespace app

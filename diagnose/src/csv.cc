@@ -1,8 +1,10 @@
 #include <diagnose/csv.h>
+#include <diagnose/text_input.h>
 #include <coupling/run_case.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,8 +24,8 @@ namespace diagnose
   std::optional<double> parse_finite_double(const std::string &text)
   {
     const std::string t = trim(text);
-    if (t.empty())
-      return std::nullopt;
+    if (t.empty() || !is_decimal_number(t))
+      return std::nullopt; // hexadecimal, inf, nan: not numbers of a data table or an option
     char *end = nullptr;
     const double value = std::strtod(t.c_str(), &end);
     if (end != t.c_str() + t.size() || !std::isfinite(value))
@@ -66,22 +68,26 @@ namespace diagnose
 
   CsvTable CsvTable::read(const std::string &path)
   {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError(path + ": cannot open the data file (check the path and Rock/Data directory)");
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+      throw InputError(clip(path) + ": cannot open the data file (check the path and Rock/Data directory)");
+    std::istringstream in(read_text_file(path, "data file"));
     return parse(in, path);
   }
 
   CsvTable CsvTable::parse(std::istream &in, const std::string &name)
   {
     CsvTable table;
-    table.file_ = name;
+    table.file_ = clip(name);
+    std::ostringstream raw;
+    raw << in.rdbuf();
+    std::istringstream text(normalise_text(raw.str(), name)); // idempotent after read_text_file
     std::string line;
     std::size_t line_number = 0;
-    while (std::getline(in, line))
+    while (std::getline(text, line))
     {
       ++line_number;
-      const std::string where = name + ":" + std::to_string(line_number);
+      const std::string where = table.file_ + ":" + std::to_string(line_number);
       const std::string t = trim(line);
       if (t.empty())
         continue;
@@ -101,7 +107,7 @@ namespace diagnose
                              " has no name; the first non-comment line must name every column");
           for (std::size_t j = 0; j < i; ++j)
             if (cells[j] == cells[i])
-              throw InputError(where + ": header names column '" + cells[i] +
+              throw InputError(where + ": header names column '" + clip(cells[i]) +
                                "' twice; column names must be unique");
         }
         table.columns_ = std::move(cells);
@@ -116,7 +122,7 @@ namespace diagnose
       table.lines_.push_back(line_number);
     }
     if (table.columns_.empty())
-      throw InputError(name + ": no header row; expected '# comment' lines, a header row and data rows");
+      throw InputError(table.file_ + ": no header row; expected '# comment' lines, a header row and data rows");
     return table;
   }
 
@@ -141,7 +147,7 @@ namespace diagnose
         std::string expected;
         for (const auto &e : names)
           expected += (expected.empty() ? "" : ",") + e;
-        throw InputError(file_ + ":" + std::to_string(header_line_) + ": no column '" + n +
+        throw InputError(file_ + ":" + std::to_string(header_line_) + ": no column '" + clip(n) +
                          "'; the header must contain " + expected);
       }
   }
@@ -151,7 +157,7 @@ namespace diagnose
     for (std::size_t i = 0; i < columns_.size(); ++i)
       if (columns_[i] == column)
         return i;
-    throw InputError(file_ + ":" + std::to_string(header_line_) + ": no column '" + column + "'");
+    throw InputError(file_ + ":" + std::to_string(header_line_) + ": no column '" + clip(column) + "'");
   }
 
   const std::string &CsvTable::text(std::size_t row, const std::string &column) const
@@ -166,8 +172,8 @@ namespace diagnose
       return std::nullopt;
     const auto value = parse_finite_double(t);
     if (!value)
-      throw InputError(where(row) + ": column " + column + " = '" + t +
-                       "' is not a finite number; write a number, or leave the cell empty where unknown");
+      throw InputError(where(row) + ": column " + clip(column) + " = '" + clip(t) +
+                       "' is not a finite number (decimal, e.g. 97.07); write a number, or leave the cell empty where unknown");
     return value;
   }
 
@@ -176,8 +182,8 @@ namespace diagnose
     const std::string &t = text(row, column);
     const auto value = parse_finite_double(t);
     if (!value)
-      throw InputError(where(row) + ": column " + column + " = '" + t +
-                       "' is not a finite number; this column needs a number in every row");
+      throw InputError(where(row) + ": column " + clip(column) + " = '" + clip(t) +
+                       "' is not a finite number (decimal, e.g. 97.07); this column needs a number in every row");
     return *value;
   }
 } // namespace diagnose

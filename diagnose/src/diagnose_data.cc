@@ -2,6 +2,7 @@
 // row throws an InputError naming the file and line, what was wrong and what is accepted.
 #include <diagnose/csv.h>
 #include <diagnose/diagnose.h>
+#include <diagnose/text_input.h>
 #include <coupling/run_case.h>
 
 #include <algorithm>
@@ -34,7 +35,7 @@ namespace diagnose
           throw InputError(t.where(r) + ": empty group; give a group name (e.g. M1)");
         for (const auto &o : rows)
           if (o.group == m.group)
-            throw InputError(t.where(r) + ": group '" + m.group +
+            throw InputError(t.where(r) + ": group '" + clip(m.group) +
                              "' listed twice; one row per group");
         m.E_GPa             = get(r, "E_GPa");
         m.nu                = get(r, "nu");
@@ -83,7 +84,7 @@ namespace diagnose
         s.sigma1 = t.number(r, "sigma1_MPa");
         s.sigma3 = t.number(r, "sigma3_MPa");
         if (s.test != "UCS" && s.test != "BTS" && s.test != "CTCS" && s.test != "TXE")
-          throw InputError(s.where + ": test '" + s.test + "'; accepted: UCS, BTS, CTCS, TXE");
+          throw InputError(s.where + ": test '" + clip(s.test) + "'; accepted: UCS, BTS, CTCS, TXE");
         if (s.group.empty())
           throw InputError(s.where + ": empty group; give the material group (e.g. M1)");
         if (s.test == "BTS" && !(s.sigma1 == 0 && s.sigma3 < 0))
@@ -103,6 +104,7 @@ namespace diagnose
       const CsvTable t = CsvTable::read(path);
       Curve c;
       c.file = path;
+      const std::string shown = clip(path);
       std::map<std::string, std::string> keys;
       for (const auto &line : t.comments())
       {
@@ -114,7 +116,7 @@ namespace diagnose
       const auto key = [&](const std::string &k) -> std::string {
         const auto it = keys.find(k);
         if (it == keys.end())
-          throw InputError(path + ": header line '# " + k +
+          throw InputError(shown + ": header line '# " + k +
                            ": ...' missing (curves need test, group, "
                            "diameter_mm, length_mm or thickness_mm, displacement)");
         return it->second;
@@ -122,23 +124,23 @@ namespace diagnose
       const auto number = [&](const std::string &k) {
         const auto v = parse_finite_double(key(k));
         if (!v || *v < 0)
-          throw InputError(path + ": header '" + k + ": " + key(k) +
+          throw InputError(shown + ": header '" + k + ": " + clip(key(k)) +
                            "' is not a non-negative number");
         return *v;
       };
       c.test  = key("test");
       c.group = key("group");
       if (c.test != "UCS" && c.test != "CTCS" && c.test != "BTS")
-        throw InputError(path + ": header 'test: " + c.test + "'; accepted: UCS, CTCS, BTS");
+        throw InputError(shown + ": header 'test: " + clip(c.test) + "'; accepted: UCS, CTCS, BTS");
       c.diameter          = number("diameter_mm");
       c.length            = keys.count("length_mm") ? number("length_mm") : number("thickness_mm");
       c.confining         = keys.count("confining_MPa") ? number("confining_MPa") : 0.0;
       const std::string d = key("displacement");
       if (d != "platen" && d != "specimen")
-        throw InputError(path + ": header 'displacement: " + d + "'; accepted: platen, specimen");
+        throw InputError(shown + ": header 'displacement: " + clip(d) + "'; accepted: platen, specimen");
       c.platen_displacement = d == "platen";
       if (!(c.diameter > 0 && c.length > 0))
-        throw InputError(path + ": diameter and length/thickness must be positive");
+        throw InputError(shown + ": diameter and length/thickness must be positive");
       t.require_columns({"time_s", "displacement_mm", "force_kN"});
       for (std::size_t r = 0; r < t.n_rows(); ++r)
       {
@@ -151,7 +153,23 @@ namespace diagnose
         c.force.push_back(fi);
       }
       if (c.time.size() < 5)
-        throw InputError(path + ": a curve needs at least 5 rows");
+        throw InputError(shown + ": a curve needs at least 5 rows");
+      // a load frame records compression as a positive force; a curve that never loads, or
+      // loads the wrong way, cannot be fitted (only tare noise may dip below zero)
+      double peak = 0;
+      for (const double f : c.force)
+        peak = std::max(peak, f);
+      if (!(peak > 0))
+        throw InputError(shown + ": force_kN is never positive (peak " + std::to_string(peak) +
+                         " kN); give the compressive load as a positive force");
+      for (std::size_t r = 0; r < t.n_rows(); ++r)
+        if (c.force[r] < -0.05 * peak)
+          throw InputError(t.where(r) + ": force_kN = " + clip(t.text(r, "force_kN")) +
+                           " is negative beyond tare noise (5 % of the peak " + std::to_string(peak) +
+                           " kN); give the compressive load as a positive force");
+      for (std::size_t r = 0; r < t.n_rows(); ++r)
+        if (!(c.force[r] < 1e6 && c.displacement[r] > -1e3 && c.displacement[r] < 1e3))
+          throw InputError(t.where(r) + ": force_kN or displacement_mm out of range (|F| < 1e6 kN, |d| < 1000 mm)");
       return c;
     }
   } // namespace
@@ -159,7 +177,7 @@ namespace diagnose
   Data read_data(const std::string &folder)
   {
     if (!fs::is_directory(folder))
-      throw InputError(folder + ": not a folder; give the measured-data folder (docs/design.md)");
+      throw InputError(clip(folder) + ": not a folder; give the measured-data folder (docs/design.md)");
     Data data;
     const fs::path root(folder);
     if (fs::exists(root / "material.csv"))
@@ -177,7 +195,7 @@ namespace diagnose
         data.curves.push_back(read_curve(f));
     }
     if (data.materials.empty() && data.strengths.empty() && data.curves.empty())
-      throw InputError(folder + ": no material.csv, strength.csv or curves/*.csv with rows");
+      throw InputError(clip(folder) + ": no material.csv, strength.csv or curves/*.csv with rows");
     return data;
   }
 } // namespace diagnose

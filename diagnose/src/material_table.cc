@@ -1,5 +1,6 @@
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
+#include <diagnose/text_input.h>
 #include <coupling/run_case.h>
 
 #include <filesystem>
@@ -21,7 +22,7 @@ namespace diagnose
   {
     namespace fs = std::filesystem;
     if (!fs::is_directory(directory))
-      throw InputError(directory + ": no such data folder; Rock/Data directory must name a folder "
+      throw InputError(clip(directory) + ": no such data folder; Rock/Data directory must name a folder "
                                    "with table3_fitted_parameters.csv (default cases/data)");
     MaterialTable table;
     const CsvTable t3 = CsvTable::read(directory + "/table3_fitted_parameters.csv");
@@ -32,17 +33,19 @@ namespace diagnose
       g.group = t3.text(r, "group");
       g.source = t3.where(r);
       check(!g.group.empty(), t3, r, "empty group name; every row needs one (e.g. M1)");
-      check(table.lookup(g.group) == nullptr, t3, r, "group " + g.group + " appears twice; group names must be unique");
+      check(table.lookup(g.group) == nullptr, t3, r, "group " + clip(g.group) + " appears twice; group names must be unique");
       const double e = t3.number(r, "E_GPa");
-      check(e > 0, t3, r, "E_GPa = " + t3.text(r, "E_GPa") + " must be > 0");
+      // plausible rock (and steel) values: a value the case file later refuses is blamed here,
+      // on the table's line, not on the case file that named the group
+      check(e > 0 && e <= 1000, t3, r, "E_GPa = " + clip(t3.text(r, "E_GPa")) + " must be in (0, 1000]");
       g.youngs_modulus = e * 1e9;
       g.poissons_ratio = t3.number(r, "nu");
       check(g.poissons_ratio >= 0 && g.poissons_ratio < 0.5, t3, r,
-            "nu = " + t3.text(r, "nu") + " must be in [0, 0.5)");
+            "nu = " + clip(t3.text(r, "nu")) + " must be in [0, 0.5)");
       const double ucs = t3.number(r, "UCS_MPa"), bts = t3.number(r, "BTS_MPa");
-      check(bts > 0 && ucs > bts, t3, r,
-            "UCS_MPa = " + t3.text(r, "UCS_MPa") + ", BTS_MPa = " + t3.text(r, "BTS_MPa") +
-              ": need 0 < BTS < UCS");
+      check(bts > 0 && ucs > bts && ucs <= 1e4, t3, r,
+            "UCS_MPa = " + clip(t3.text(r, "UCS_MPa")) + ", BTS_MPa = " + clip(t3.text(r, "BTS_MPa")) +
+              ": need 0 < BTS < UCS <= 10000");
       g.ucs = ucs * 1e6;
       g.bts = bts * 1e6;
       const auto c = t3.optional_number(r, "c_MPa");
@@ -50,8 +53,8 @@ namespace diagnose
       check(c.has_value() == phi.has_value(), t3, r, "give both c_MPa and phi_deg or leave both empty");
       if (c)
       {
-        check(*c > 0, t3, r, "c_MPa = " + t3.text(r, "c_MPa") + " must be > 0");
-        check(*phi > 0 && *phi < 90, t3, r, "phi_deg = " + t3.text(r, "phi_deg") + " must be in (0, 90)");
+        check(*c > 0 && *c <= 1e4, t3, r, "c_MPa = " + clip(t3.text(r, "c_MPa")) + " must be in (0, 10000]");
+        check(*phi > 0 && *phi < 90, t3, r, "phi_deg = " + clip(t3.text(r, "phi_deg")) + " must be in (0, 90)");
         g.measured_cohesion = *c * 1e6;
         g.measured_friction_angle = *phi;
       }
@@ -72,12 +75,12 @@ namespace diagnose
         for (auto &candidate : table.groups_)
           if (candidate.group == name)
             g = &candidate;
-        check(g != nullptr, t4, r, "group '" + name + "' is not in table3_fitted_parameters.csv (" +
+        check(g != nullptr, t4, r, "group '" + clip(name) + "' is not in table3_fitted_parameters.csv (" +
                                      table.group_names() + ")");
         check(!g->calibrated_cohesion, t4, r, "group " + name + " appears twice");
         const double c = t4.number(r, "c_MPa"), phi = t4.number(r, "phi_deg");
-        check(c > 0, t4, r, "c_MPa = " + t4.text(r, "c_MPa") + " must be > 0");
-        check(phi > 0 && phi < 90, t4, r, "phi_deg = " + t4.text(r, "phi_deg") + " must be in (0, 90)");
+        check(c > 0 && c <= 1e4, t4, r, "c_MPa = " + clip(t4.text(r, "c_MPa")) + " must be in (0, 10000]");
+        check(phi > 0 && phi < 90, t4, r, "phi_deg = " + clip(t4.text(r, "phi_deg")) + " must be in (0, 90)");
         g->calibrated_cohesion = c * 1e6;
         g->calibrated_friction_angle = phi;
       }
@@ -97,7 +100,7 @@ namespace diagnose
   {
     if (const auto *g = lookup(name))
       return *g;
-    throw InputError("unknown rock group '" + name + "'; known groups: " + group_names());
+    throw InputError("unknown rock group '" + clip(name) + "'; known groups: " + group_names());
   }
 
   std::string MaterialTable::group_names() const

@@ -18,7 +18,14 @@ namespace cosim_test
 {
   namespace fs = std::filesystem;
 
-  inline std::string cosim_binary() { return std::string(COSIM_BINARY_DIR) + "/bin/cosim"; }
+  /// The cosim under test: $COSIM_TEST_BINARY when set (to run a suite against another build),
+  /// else the one of this build tree.
+  inline std::string cosim_binary()
+  {
+    if (const char *other = std::getenv("COSIM_TEST_BINARY"); other && *other)
+      return other;
+    return std::string(COSIM_BINARY_DIR) + "/bin/cosim";
+  }
   inline std::string source(const std::string &relative) { return std::string(COSIM_SOURCE_DIR) + "/" + relative; }
 
   inline std::string shell_quote(const std::string &s)

@@ -4,22 +4,38 @@
 /// per array at the root, named as the array (e.g. "body.x", "driver.history"), plus the root
 /// attribute `cosim_checkpoint_version`. Doubles are stored bit for bit, so a restart from the
 /// file continues exactly as from the state in memory.
+///
+/// Integrity: every dataset carries the attribute `fnv1a64`, a 64-bit FNV-1a checksum of its
+/// bytes; the root carries `cosim_version` (version and commit of the program that wrote it) and
+/// `used_parameters` (the case as used_parameters.prm holds it). read_checkpoint refuses a file
+/// whose data fail their checksum, written by another program version, or (when given the
+/// case) written for another case, saying what differs.
 
 #include <coupling/run_output.h>
 
+#include <cstdint>
 #include <string>
 
 namespace app
 {
   /// Version written into every checkpoint; read_checkpoint refuses others.
   /// 2: fem::SteelBody scalars gained the rigid x velocity and the frame force vector (disc cutter).
-  constexpr int checkpoint_version = 2;
+  /// 3: per-dataset checksums and the case and program identity.
+  constexpr int checkpoint_version = 3;
 
   /// Writes `state` to `path` atomically (a temporary file renamed over `path`, so that a crash
   /// while writing leaves the previous checkpoint intact). std::runtime_error on I/O errors.
-  void write_checkpoint(const std::string &path, const coupling::StateArrays &state);
+  /// `used_parameters`: the case's used_parameters.prm text, stored for the restart check.
+  void write_checkpoint(const std::string &path, const coupling::StateArrays &state,
+                        const std::string &used_parameters = "");
 
   /// Reads a checkpoint. InputError (one line naming the file) when it is missing, unreadable,
-  /// not a cosim checkpoint or of another version.
-  coupling::StateArrays read_checkpoint(const std::string &path);
+  /// not a cosim checkpoint or of another version, when a dataset fails its checksum, when it was
+  /// written by another program version, and, when `used_parameters` is given (the text of the
+  /// restart folder's used_parameters.prm), when it was written for another case: the message
+  /// names the first key that differs and both values.
+  coupling::StateArrays read_checkpoint(const std::string &path, const std::string *used_parameters = nullptr);
+
+  /// 64-bit FNV-1a checksum of `n` bytes.
+  std::uint64_t fnv1a64(const void *data, std::size_t n);
 } // namespace app
