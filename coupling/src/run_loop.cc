@@ -31,10 +31,10 @@ namespace coupling
                             std::chrono::steady_clock::time_point &last_checkpoint,
                             const SaveState &save_state)
     {
-      const auto now        = std::chrono::steady_clock::now();
-      const bool stop_asked = observer.stop_requested() ||
-                              (output.stop_after_steps > 0 &&
-                               n_steps == static_cast<std::size_t>(output.stop_after_steps));
+      const auto now = std::chrono::steady_clock::now();
+      const bool stop_asked =
+        observer.stop_requested() || (output.stop_after_steps > 0 &&
+                                      n_steps == static_cast<std::size_t>(output.stop_after_steps));
       const bool by_steps = output.checkpoint_steps > 0 &&
                             n_steps % static_cast<std::size_t>(output.checkpoint_steps) == 0;
       const bool by_time = output.checkpoint_minutes > 0 &&
@@ -174,8 +174,7 @@ namespace coupling
     if (i >= 0)
     {
       const auto &x = watch_.rock->positions();
-      os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
-         << ") m";
+      os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ") m";
     }
     os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
        << ", t = " << last_good_time_ << " s";
@@ -185,14 +184,14 @@ namespace coupling
 
   void RunLoop::check_stability(RunObserver &observer)
   {
-    const sph::Body<3> &body = *watch_.rock;
-    const auto &x            = body.positions();
-    const auto &v            = body.velocities();
-    const auto &h            = body.smoothing_lengths();
-    const auto &m            = body.masses();
-    const double c           = body.wave_speed();
-    const unsigned int n     = body.n_particles();
-    const double domain      = watch_.domain_size;
+    const sph::Body<3> &body     = *watch_.rock;
+    const auto &x                = body.positions();
+    const auto &v                = body.velocities();
+    const auto &h                = body.smoothing_lengths();
+    const auto &m                = body.masses();
+    const double c               = body.wave_speed();
+    const unsigned int n         = body.n_particles();
+    const double domain          = watch_.domain_size;
     const std::string &too_large = watch_.likely_cause;
     // one pass over the particles, a contiguous chunk per thread; the chunks' results are
     // combined in chunk order, so the first bad particle, the fastest one and the one with the
@@ -209,7 +208,7 @@ namespace coupling
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), nt = omp_get_num_threads();
-      Scan &r      = scans[t];
+      Scan &r = scans[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
         const auto &s3 = body.stress3(i);
@@ -280,8 +279,8 @@ namespace coupling
     {
       std::ostringstream os;
       os << "collapsing time step: the stable step " << dt_stable << " s fell below half the step "
-         << "in use " << watch_.time_step << " s (|v| = " << v[i_dt].norm() << " m/s, h = "
-         << h[i_dt] << " m)";
+         << "in use " << watch_.time_step << " s (|v| = " << v[i_dt].norm()
+         << " m/s, h = " << h[i_dt] << " m)";
       fail(observer, os.str(), i_dt, too_large);
     }
     for (const auto &[name, steel] : watch_.steel)

@@ -49,8 +49,8 @@ namespace coupling
   public:
     virtual ~SteppedTest() = default;
     /// One coupled step (SPH, contact, FEM sub-steps); advances time() and n_steps().
-    virtual void step() = 0;
-    virtual double time() const        = 0; ///< [s]
+    virtual void step()                 = 0;
+    virtual double time() const         = 0; ///< [s]
     virtual std::size_t n_steps() const = 0;
     /// Work done on the rock so far (frame, confinement) [J]: bounds the kinetic energy of a stable
     /// run.
@@ -59,7 +59,7 @@ namespace coupling
     virtual Measurement measure() = 0;
     /// Called after each recorded row: the driver's own account of the run (peak, failure
     /// pattern), and the stop criterion: a reason to stop now ("post-peak drop"), or "" to go on.
-    virtual std::string stop_reason(const HistoryRow &row) = 0;
+    virtual std::string stop_reason(const HistoryRow &row)   = 0;
     virtual ParticleSnapshot particle_snapshot() const       = 0;
     virtual std::vector<MeshSnapshot> mesh_snapshots() const = 0;
     /// The driver's part of a checkpoint (bodies, contacts, its clocks and accounts); the loop
@@ -72,12 +72,12 @@ namespace coupling
   /// When rows and snapshots are taken and when the run ends, all in simulated time [s].
   struct RunSchedule
   {
-    double end_time          = 0; ///< the run ends at the first step at or past it [s]
-    double progress_time     = 0; ///< time that counts as the whole run for progress [s]
-    double row_interval      = 0; ///< [s]
-    double snapshot_interval = 0; ///< [s]
-    double first_row         = 0; ///< time of the first history row [s]
-    double first_snapshot    = 0; ///< time of the first snapshot after the start [s]
+    double end_time          = 0;     ///< the run ends at the first step at or past it [s]
+    double progress_time     = 0;     ///< time that counts as the whole run for progress [s]
+    double row_interval      = 0;     ///< [s]
+    double snapshot_interval = 0;     ///< [s]
+    double first_row         = 0;     ///< time of the first history row [s]
+    double first_snapshot    = 0;     ///< time of the first snapshot after the start [s]
     bool snapshot_at_start   = false; ///< also a snapshot of the state before the first step
     std::string end_reason;           ///< the stop reason when end_time is reached
   };

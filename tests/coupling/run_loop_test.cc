@@ -40,7 +40,9 @@ namespace
   class Ticker : public SteppedTest
   {
   public:
-    explicit Ticker(sph::Body<3> &body) : body_(body) {}
+    explicit Ticker(sph::Body<3> &body)
+        : body_(body)
+    {}
     std::size_t kick_from  = 0; ///< from this step on, a huge force on particle 0 (0: never)
     std::size_t nan_row_at = 0; ///< the row at this step has a NaN force (0: never)
     std::size_t stop_row   = 0; ///< stop_reason says "enough" at this row (0: never)
@@ -94,8 +96,8 @@ namespace
 
   private:
     sph::Body<3> &body_;
-    double t_          = 0;
-    std::size_t n_     = 0;
+    double t_           = 0;
+    std::size_t n_      = 0;
     std::size_t n_rows_ = 0;
   };
 
@@ -105,7 +107,7 @@ namespace
     std::vector<double> snapshot_times, fractions;
     StateArrays checkpoint_state;
     std::size_t checkpoint_step = 0, n_checkpoints = 0;
-    long good_step = -1;
+    long good_step             = -1;
     std::size_t good_particles = 0;
     void history(const HistoryRow &r) override { rows.push_back(r); }
     void snapshot(double t, const ParticleSnapshot &, const std::vector<MeshSnapshot> &) override
