@@ -5,6 +5,7 @@
 #include <diagnose/material_table.h>
 #include <app/output_writer.h>
 #include <app/paths.h>
+#include <coupling/references.h>
 #include <coupling/run_case.h>
 #include <app/resource_estimate.h>
 #include <app/result_folder.h>
@@ -28,6 +29,7 @@ namespace app
   using coupling::CaseParameters;
   using coupling::Summary;
   using coupling::find_extra;
+  using coupling::mohr_coulomb_axial_strength;
 
   namespace fs = std::filesystem;
 
@@ -274,12 +276,6 @@ namespace app
       return run_plot_script("plot_study.py", args, png.string());
     }
   } // namespace
-
-  double mohr_coulomb_axial_strength(const double c, const double phi_deg, const double sigma3)
-  {
-    const double s = std::sin(phi_deg * pi / 180.0);
-    return 2 * c * std::cos(phi_deg * pi / 180.0) / (1 - s) + sigma3 * (1 + s) / (1 - s);
-  }
 
   std::string study_help()
   {

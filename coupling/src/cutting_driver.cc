@@ -3,6 +3,7 @@
 #include "driver_common.h"
 #include "specimen_driver.h"
 
+#include <coupling/references.h>
 #include <coupling/run_case.h>
 
 #include <fem/steel_body.h>
@@ -52,39 +53,6 @@ namespace coupling
       return *std::max_element(v.begin(), v.end());
     }
   } // namespace
-
-  CsmEstimate csm_cutter_force(const double ucs, const double bts, const double radius,
-                               const double tip_width, const double penetration,
-                               const double spacing, const double psi)
-  {
-    CsmEstimate e;
-    e.contact_angle = std::acos((radius - penetration) / radius);
-    // the CSM fit's constant C = 2.12 holds in any consistent units: the bracket is a stress cubed
-    e.base_pressure = 2.12 * std::cbrt(spacing * ucs * ucs * bts /
-                                       (e.contact_angle * std::sqrt(radius * tip_width)));
-    e.total         = e.base_pressure * e.contact_angle * radius * tip_width / (1.0 + psi);
-    e.normal        = e.total * std::cos(0.5 * e.contact_angle);
-    e.rolling       = e.total * std::sin(0.5 * e.contact_angle);
-    return e;
-  }
-
-  double sneddon_cone_force(const double youngs, const double nu, const double half_angle,
-                            const double depth)
-  {
-    return 2.0 / pi * youngs / (1.0 - nu * nu) * std::tan(half_angle) * depth * depth;
-  }
-
-  double flat_punch_force(const double youngs, const double nu, const double radius,
-                          const double depth)
-  {
-    return 2.0 * radius * youngs / (1.0 - nu * nu) * depth;
-  }
-
-  double cavity_expansion_pressure(const double youngs, const double yield, const double half_angle)
-  {
-    return 2.0 / 3.0 * yield *
-           (1.0 + std::log(std::max(1.0, youngs / std::tan(half_angle) / (3.0 * yield))));
-  }
 
   CuttingDriver::CuttingDriver(const CaseParameters &parameters)
       : prm_(parameters)
@@ -277,7 +245,8 @@ namespace coupling
   {
     // penalty stiffness and time step as in the laboratory driver: a fraction s of the
     // central-difference bound at the rock's own step, the step shortened to count the contact
-    const double dt_sph = body_->stable_time_step();
+    time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
+    const double dt_sph = body_->stable_time_step() * time_step_scale_;
     dt_                 = coupled_time_step(dt_sph, prm_.platens.contact_stiffness_scale);
     const double dt_fem = cutter_->stable_time_step();
     n_substeps_         = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
@@ -382,7 +351,7 @@ namespace coupling
     ++n_steps_;
   }
 
-  HistoryRow CuttingDriver::measure()
+  HistoryRow CuttingDriver::history_row()
   {
     HistoryRow r;
     r.time = time_;
@@ -413,25 +382,14 @@ namespace coupling
     return r;
   }
 
-  void CuttingDriver::check_stability() const
+  Measurement CuttingDriver::measure()
   {
-    const auto &x = body_->positions();
-    const auto &v = body_->velocities();
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-    {
-      const bool finite = std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]);
-      const bool inside = std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
-                          std::abs(x[i][2]) < domain_size_;
-      if (!finite || !inside)
-      {
-        std::ostringstream os;
-        os << "step " << n_steps_ << ", t = " << time_ << " s: particle " << i
-           << (finite ? " left the domain" : " has a non-finite position or velocity")
-           << "; likely cause: a time step above the stable limit (SPH/TSSFAC, "
-              "Platens/Contact stiffness scale) or Cutter/Speed far above quasi-static";
-        throw InstabilityError(os.str());
-      }
-    }
+    Measurement m;
+    m.row                    = history_row();
+    const sph::Energies rock = body_->energies();
+    m.rock_kinetic           = rock.kinetic;
+    m.rock_internal          = rock.internal;
+    return m;
   }
 
   ParticleSnapshot CuttingDriver::particle_snapshot() const
@@ -449,59 +407,36 @@ namespace coupling
     const auto wall_start      = std::chrono::steady_clock::now();
     const double row_interval  = t_end_ / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_end_ / std::max(1, prm_.output.n_snapshots);
-    if (resume)
-    {
-      load_state(*resume);
-      for (const auto &r : rows_)
-        observer.history(r);
-    }
-    else
-    {
-      next_row_ = row_interval;
-      // the first snapshot: the undeformed block and the cutter in place
-      observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-      next_snap_ = snap_interval;
-    }
-    // per row: the rock's own kinetic and elastic energies (the quasi-static check; the cutter's
-    // kinetic energy is the rig's prescribed motion, not a dynamic effect in the rock)
-    const std::vector<HistoryRow> &rows = rows_;
-    auto last_checkpoint                = std::chrono::steady_clock::now();
-    while (time_ < t_end_)
-    {
-      step();
-      if (n_steps_ % 50 == 0)
-        check_stability();
-      const bool last = time_ >= t_end_;
-      if (time_ >= next_row_ || last)
-      {
-        check_stability();
-        const HistoryRow r = measure();
-        const sph::Energies rock = body_->energies();
-        rock_kinetic_.push_back(rock.kinetic);
-        rock_internal_.push_back(rock.internal);
-        if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
-          throw InstabilityError("step " + std::to_string(n_steps_) +
-                                 ": non-finite cutter force or energy; likely cause: a time step "
-                                 "above the stable limit");
-        rows_.push_back(r);
-        observer.history(r);
-        next_row_ += row_interval;
-      }
-      if (time_ >= next_snap_ || last)
-      {
-        observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-        next_snap_ += snap_interval;
-      }
-      if (n_steps_ % 20 == 0 || last)
-        observer.progress(n_steps_, time_, std::min(1.0, time_ / t_end_));
-      if (last)
-        break;
-
-      // checkpoints: every N steps and/or M minutes, and a final one when asked to stop (as the
-      // laboratory driver, SpecimenDriver::run)
-      checkpoint_or_stop(observer, prm_.output, n_steps_, time_, last_checkpoint,
-                         [this](StateArrays &state) { save_state(state); });
-    }
+    RunSchedule schedule;
+    schedule.end_time          = t_end_;
+    schedule.progress_time     = t_end_;
+    schedule.row_interval      = row_interval;
+    schedule.snapshot_interval = snap_interval;
+    schedule.first_row         = row_interval;
+    // the first snapshot: the undeformed block and the cutter in place
+    schedule.snapshot_at_start = true;
+    schedule.first_snapshot    = snap_interval;
+    schedule.end_reason        = "end of path";
+    // kinetic-energy allowance of the stability check at the start, when the cutter's work is
+    // still tiny: the whole block moving at the cutter's speed
+    double block_mass = 0;
+    for (const double m : body_->masses())
+      block_mass += m;
+    StabilityWatch watch;
+    watch.rock         = body_.get();
+    watch.steel        = {{"cutter", cutter_.get()}};
+    watch.domain_size  = domain_size_;
+    watch.energy_floor = 0.5 * block_mass * prm_.cutter.speed * prm_.cutter.speed;
+    watch.time_step    = dt_;
+    watch.tssfac       = prm_.sph.tssfac;
+    watch.likely_cause =
+      "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
+      "near 1) or Cutter/Speed far above quasi-static";
+    RunLoop loop(*this, schedule, std::move(watch), prm_.output);
+    const std::string reason                 = loop.run(observer, resume);
+    const std::vector<HistoryRow> &rows      = loop.rows();
+    const std::vector<double> &rock_kinetic  = loop.rock_kinetic();
+    const std::vector<double> &rock_internal = loop.rock_internal();
 
     const CutterParameters &c = prm_.cutter;
     Summary s;
@@ -509,7 +444,7 @@ namespace coupling
     s.n_particles  = body_->n_particles();
     s.n_steps      = n_steps_;
     s.time_step    = dt_;
-    s.stop_reason  = "end of path";
+    s.stop_reason  = reason;
     s.true_area    = 0;
     s.lattice_area = 0;
 
@@ -543,8 +478,8 @@ namespace coupling
       s.max_displacement = std::max(s.max_displacement, r.displacement);
       if (!(s.peak_force > 0) || r.force < 0.1 * s.peak_force)
         continue;
-      if (rock_internal_[k] > 0)
-        max_ratio = std::max(max_ratio, rock_kinetic_[k] / rock_internal_[k]);
+      if (rock_internal[k] > 0)
+        max_ratio = std::max(max_ratio, rock_kinetic[k] / rock_internal[k]);
       max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
     }
     s.max_kinetic_to_internal_energy = max_ratio;
@@ -625,11 +560,4 @@ namespace coupling
     return s;
   }
 
-  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer,
-                           const StateArrays *resume)
-  {
-    const ThreadLimit threads(parameters.sph.n_threads);
-    CuttingDriver       test(parameters);
-    return test.run(observer, resume);
-  }
 } // namespace coupling

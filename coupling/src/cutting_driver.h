@@ -4,13 +4,15 @@
 /// elastic steel, pressed into (indentation) or drawn across (linear cutting) an SPH rock block
 /// whose bottom and sides are held. Penalty contact with Coulomb friction, sub-cycling and the
 /// energy account as in the laboratory driver (specimen_driver.h). Internal to the coupling library;
-/// run_case() dispatches to run_cutting_case().
+/// run_case() (run_case.cc) is the public entry.
 ///
 /// Frame: the block fills [0, L] x [-W/2, W/2] x [-H, 0]; its free top face is z = 0. The cutter
 /// indenter tip starts on that face and moves down (-z) to the penetration; a disc cutter starts
 /// outside the free entry face x = 0 with its tip at the penetration depth and moves along +x. The disc slides without rotating: with frictionless contact (the default) a
 /// freely rolling disc and a sliding one take the same traction from the rock, as a free disc
 /// carries no moment about its axle; with friction the sliding disc over-states the rolling force.
+
+#include "run_loop.h"
 
 #include <coupling/case_parameters.h>
 #include <coupling/contact.h>
@@ -32,57 +34,42 @@ namespace fem
 
 namespace coupling
 {
-  /// The CSM (Colorado School of Mines) estimate for a CCS disc cutter (Rostami 1997).
-  struct CsmEstimate
-  {
-    double contact_angle = 0; ///< phi = acos((R - p) / R) [rad]
-    double base_pressure = 0; ///< P0 in the crushed zone [Pa]
-    double total         = 0; ///< resultant F_t [N]
-    double normal        = 0; ///< F_n = F_t cos(phi / 2) [N]
-    double rolling       = 0; ///< F_r = F_t sin(phi / 2) [N]
-  };
-
-  /// CSM: P0 = C (S sigma_c^2 sigma_t / (phi sqrt(R T)))^(1/3), C = 2.12, F_t = P0 phi R T /
-  /// (1 + psi). ucs, bts [Pa]; radius R, tip width T, penetration p, line spacing S [m]; psi the
-  /// pressure-distribution exponent [-] (0.2 for a CCS tip of 12-13 mm).
-  CsmEstimate csm_cutter_force(double ucs, double bts, double radius, double tip_width,
-                               double penetration, double spacing, double psi = 0.2);
-
-  /// Sneddon: force [N] of a rigid cone of half-angle alpha [rad] at depth h [m] in an elastic
-  /// half-space (E [Pa], nu): F = 2/pi E/(1 - nu^2) tan(alpha) h^2.
-  double sneddon_cone_force(double youngs, double nu, double half_angle, double depth);
-
-  /// Boussinesq: force [N] of a rigid flat cylindrical punch of radius a [m] at depth h [m] in an
-  /// elastic half-space: F = 2 a E/(1 - nu^2) h.
-  double flat_punch_force(double youngs, double nu, double radius, double depth);
-
-  /// Johnson's expanding-cavity model: mean contact pressure [Pa] under a sharp indenter of
-  /// half-angle alpha [rad] in an elastic-perfectly-plastic solid of yield stress Y [Pa]:
-  /// p_m = 2/3 Y (1 + ln(E cot(alpha) / (3 Y))), E [Pa] (Young's modulus of the solid).
-  double cavity_expansion_pressure(double youngs, double yield, double half_angle);
-
-  class CuttingDriver
+  /// Indentation and linear cutting: builds the block and the cutter, takes the coupled steps
+  /// and measures; the run itself (rows, snapshots, checkpoints, stability with the last good
+  /// state) is RunLoop's, as for the laboratory tests.
+  class CuttingDriver : private SteppedTest
   {
   public:
     explicit CuttingDriver(const CaseParameters &parameters);
-    ~CuttingDriver();
+    ~CuttingDriver() override;
     /// Runs to the end of the cutter's path. With `resume` (a state from RunObserver::checkpoint
     /// of a run with the same parameters and thread count) continues that run bitwise: its
-    /// history rows are reported again first. Checkpoints as the laboratory driver takes them
-    /// (Output/Checkpoint interval, minutes; a final one and RunInterrupted when the observer asks
-    /// to stop or after Output/Stop after steps).
+    /// history rows are reported again first. Checkpoints, stop requests and the stability check
+    /// as RunLoop does them for every test type.
     Summary run(RunObserver &observer, const StateArrays *resume = nullptr);
-
-    /// The run's state as named arrays (body., cutter., contact., driver.*). Defined in
-    /// cutting_driver_state.cc.
-    void save_state(StateArrays &out) const;
-    /// Restores what save_state wrote. InputError when the state is of another case.
-    void load_state(const StateArrays &in);
 
     /// Number of block particles held (bottom and side layers).
     std::size_t n_fixed() const { return n_fixed_; }
 
   private:
+    // ---- SteppedTest: what RunLoop drives
+    void step() override;
+    double time() const override { return time_; }
+    std::size_t n_steps() const override { return n_steps_; }
+    double external_work() const override { return frame_work_; }
+    /// The history row (the forces averaged since the last row) and the rock's own kinetic and
+    /// elastic energies (the cutter's kinetic energy is the rig's prescribed motion).
+    Measurement measure() override;
+    /// The cutter's path alone ends the run: always "".
+    std::string stop_reason(const HistoryRow &) override { return ""; }
+    ParticleSnapshot particle_snapshot() const override;
+    std::vector<MeshSnapshot> mesh_snapshots() const override;
+    /// The run's state as named arrays (body., cutter., contact., driver.*). Defined in
+    /// cutting_driver_state.cc.
+    void save_state(StateArrays &out) const override;
+    /// Restores what save_state wrote. InputError when the state is of another case.
+    void load_state(const StateArrays &in) override;
+
     void build_block();
     void build_cutter();
     void choose_time_step();
@@ -93,11 +80,8 @@ namespace coupling
     /// Failed particles under compression stay: the confined crushed zone carries the cutter.
     /// The released particles' penalty energy is booked as dissipated (released_energy_).
     void release_failed_particles();
-    void step();
-    HistoryRow measure();
-    void check_stability() const;
-    ParticleSnapshot particle_snapshot() const;
-    std::vector<MeshSnapshot> mesh_snapshots() const;
+    /// The history row now; resets the force integrals.
+    HistoryRow history_row();
 
     CaseParameters prm_;
     bool cutting_ = false;
@@ -113,6 +97,9 @@ namespace coupling
     // path: vertical phase [0, t_down_], dwell to t_cut_start_, cut [t_cut_start_, t_end_]
     double ramp_down_ = 0, t_down_ = 0, t_cut_start_ = 0, ramp_cut_ = 0, t_end_ = 0;
     double dt_           = 0;
+    /// dt_ = coupled stable step * time_step_scale_ (TSSFAC above 1: the body is built with
+    /// TSSFAC 1 and the driver scales its step, so that an unstable step can be injected)
+    double time_step_scale_ = 1;
     int n_substeps_      = 1;
     double time_         = 0;
     std::size_t n_steps_ = 0;
@@ -128,14 +115,5 @@ namespace coupling
     std::vector<char> released_;   ///< per particle: failed and released from the contact
     std::size_t n_released_  = 0;
     double released_energy_  = 0; ///< penalty energy the released particles took with them [J]
-    // run-loop state, members so that a checkpoint holds them
-    double next_row_ = 0, next_snap_ = 0; ///< times of the next history row and snapshot [s]
-    std::vector<HistoryRow> rows_;
-    /// per row: the rock's own kinetic and elastic energies [J] (the quasi-static check)
-    std::vector<double> rock_kinetic_, rock_internal_;
   };
-
-  /// Runs one indentation or linear-cutting case (see CuttingDriver); `resume` as in run_case.
-  Summary run_cutting_case(const CaseParameters &parameters, RunObserver &observer,
-                           const StateArrays *resume = nullptr);
 } // namespace coupling

@@ -20,8 +20,7 @@ namespace coupling
 {
   namespace
   {
-    constexpr std::size_t n_scalars     = 18;
-    constexpr std::size_t history_width = 15; // every HistoryRow field, in declaration order
+    constexpr std::size_t n_scalars = 16;
 
   } // namespace
 
@@ -33,8 +32,6 @@ namespace coupling
     out["driver.scalars"] = {time_,
                              static_cast<double>(n_steps_),
                              frame_work_,
-                             next_row_,
-                             next_snap_,
                              dt_,
                              static_cast<double>(n_substeps_),
                              static_cast<double>(body_->n_particles()),
@@ -48,13 +45,6 @@ namespace coupling
                              static_cast<double>(n_in_contact_),
                              static_cast<double>(n_released_),
                              released_energy_};
-    std::vector<double> history;
-    history.reserve(history_width * rows_.size());
-    for (const auto &r : rows_)
-      append_history_row(history, r, history_width);
-    out["driver.history"]       = std::move(history);
-    out["driver.rock_kinetic"]  = rock_kinetic_;
-    out["driver.rock_internal"] = rock_internal_;
     out["driver.released"]      = std::vector<double>(released_.begin(), released_.end());
     out["driver.contact_force"] = force_on_particles_;
   }
@@ -70,24 +60,20 @@ namespace coupling
       return it->second;
     };
     const auto &d = find("driver.scalars");
-    const auto &h = find("driver.history");
-    if (d.size() != n_scalars || h.size() % history_width != 0)
-      throw InputError("checkpoint: driver.scalars / driver.history of another layout; not a "
-                       "checkpoint of an indentation or linear-cutting run");
+    if (d.size() != n_scalars)
+      throw InputError("checkpoint: driver.scalars of another layout; not a checkpoint of an "
+                       "indentation or linear-cutting run of this cosim");
     // the same case gives the same particle count, time step and sub-cycling, bit for bit
-    if (d[7] != body_->n_particles() || d[5] != dt_ || d[6] != n_substeps_)
+    if (d[5] != body_->n_particles() || d[3] != dt_ || d[4] != n_substeps_)
     {
       std::ostringstream os;
-      os << "checkpoint: it holds " << d[7] << " particles at dt = " << d[5] << " s, this case has "
+      os << "checkpoint: it holds " << d[5] << " particles at dt = " << d[3] << " s, this case has "
          << body_->n_particles() << " at dt = " << dt_
          << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
     }
-    const std::size_t n_rows = h.size() / history_width;
-    const auto &k = find("driver.rock_kinetic"), &u = find("driver.rock_internal");
     const auto &released = find("driver.released"), &force = find("driver.contact_force");
-    if (k.size() != n_rows || u.size() != n_rows || released.size() != released_.size() ||
-        force.size() != force_on_particles_.size())
+    if (released.size() != released_.size() || force.size() != force_on_particles_.size())
       throw InputError(
         "checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
     try
@@ -103,21 +89,14 @@ namespace coupling
     time_              = d[0];
     n_steps_           = static_cast<std::size_t>(d[1]);
     frame_work_        = d[2];
-    next_row_          = d[3];
-    next_snap_         = d[4];
-    travel_            = d[8];
-    depth_             = d[9];
-    impulse_           = {{d[10], d[11], d[12]}};
-    support_impulse_z_ = d[13];
-    impulse_time_      = d[14];
-    n_in_contact_      = static_cast<std::size_t>(d[15]);
-    n_released_        = static_cast<std::size_t>(d[16]);
-    released_energy_   = d[17];
-    rows_.clear();
-    for (std::size_t r = 0; r < n_rows; ++r)
-      rows_.push_back(history_row_at(h, r, history_width));
-    rock_kinetic_       = k;
-    rock_internal_      = u;
+    travel_            = d[6];
+    depth_             = d[7];
+    impulse_           = {{d[8], d[9], d[10]}};
+    support_impulse_z_ = d[11];
+    impulse_time_      = d[12];
+    n_in_contact_      = static_cast<std::size_t>(d[13]);
+    n_released_        = static_cast<std::size_t>(d[14]);
+    released_energy_   = d[15];
     force_on_particles_ = force;
     // the chip: released particles stay out of the contact (their stiffness factor 0)
     bool any = false;

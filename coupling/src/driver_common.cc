@@ -97,13 +97,8 @@ namespace coupling
 
   MeshSnapshot mesh_snapshot(const std::string &name, const fem::SteelBody &platen)
   {
-    const fem::MeshSnapshot f = platen.mesh_snapshot();
-    MeshSnapshot m;
+    MeshSnapshot m = platen.mesh_snapshot();
     m.name         = name;
-    m.position     = f.position;
-    m.displacement = f.displacement;
-    m.hexahedra    = f.hexahedra;
-    m.von_mises    = f.von_mises;
     return m;
   }
 
@@ -163,35 +158,6 @@ namespace coupling
     r.rolling_force      = all[13];
     r.side_force         = all[14];
     return r;
-  }
-
-  void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
-                          const std::size_t n_steps, const double time,
-                          std::chrono::steady_clock::time_point &last_checkpoint,
-                          const std::function<void(StateArrays &)> &save_state)
-  {
-    const auto now        = std::chrono::steady_clock::now();
-    const bool stop_asked = observer.stop_requested() ||
-                            (output.stop_after_steps > 0 &&
-                             n_steps == static_cast<std::size_t>(output.stop_after_steps));
-    const bool by_steps =
-      output.checkpoint_steps > 0 && n_steps % static_cast<std::size_t>(output.checkpoint_steps) == 0;
-    const bool by_time = output.checkpoint_minutes > 0 &&
-                         std::chrono::duration<double>(now - last_checkpoint).count() >=
-                           60.0 * output.checkpoint_minutes;
-    if (stop_asked || by_steps || by_time)
-      {
-        StateArrays state;
-        save_state(state);
-        observer.checkpoint(n_steps, state);
-        last_checkpoint = now;
-      }
-    if (stop_asked)
-      {
-        std::ostringstream os;
-        os << "stopped on request after step " << n_steps << ", t = " << time << " s";
-        throw RunInterrupted(os.str());
-      }
   }
 
   ThreadLimit::ThreadLimit(const int n_threads)

@@ -10,8 +10,6 @@
 
 #include <fem/parameters.h>
 
-#include <chrono>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,15 +57,6 @@ namespace coupling
 
   /// Row k of an array written by append_history_row with the same width.
   HistoryRow history_row_at(const std::vector<double> &a, std::size_t k, std::size_t width);
-
-  /// After step n_steps: a checkpoint (save_state, then observer.checkpoint) every
-  /// Output/Checkpoint interval steps and/or minutes since last_checkpoint (updated), and a final
-  /// one with RunInterrupted thrown when the observer asks to stop or Output/Stop after steps is
-  /// reached.
-  void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
-                          std::size_t n_steps, double time,
-                          std::chrono::steady_clock::time_point &last_checkpoint,
-                          const std::function<void(StateArrays &)> &save_state);
 
   /// Holds OpenMP's default thread count at `n_threads` (SPH/Threads; 0 leaves it: all cores)
   /// while it lives, so that the coupling's own parallel loops (contact, stability check) run on

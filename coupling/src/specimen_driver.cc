@@ -1,6 +1,5 @@
 #include "specimen_driver.h"
 
-#include "cutting_driver.h"
 #include "driver_common.h"
 #include "failure_pattern.h"
 
@@ -11,10 +10,8 @@
 #include <sph/body.h>
 #include <sph/lattice.h>
 
-#include <omp.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <iterator>
@@ -472,7 +469,7 @@ namespace coupling
     return std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / scale;
   }
 
-  HistoryRow SpecimenDriver::measure() const
+  HistoryRow SpecimenDriver::history_row() const
   {
     HistoryRow r;
     r.time            = time_;
@@ -525,170 +522,48 @@ namespace coupling
     return r;
   }
 
-  void SpecimenDriver::check_stability(RunObserver &observer)
+  Measurement SpecimenDriver::measure()
   {
-    const auto &x        = body_->positions();
-    const auto &v        = body_->velocities();
-    const auto &h        = body_->smoothing_lengths();
-    const auto &m        = body_->masses();
-    const double c       = body_->wave_speed();
-    const unsigned int n = body_->n_particles();
-    // where: a particle id and position, or (i < 0) the platen named in `what`
-    auto fail = [&](const std::string &what, long i, const std::string &cause) {
-      std::ostringstream os;
-      os << "step " << n_steps_ << ", t = " << time_ << " s: " << what;
-      if (i >= 0)
-        os << " at particle " << i << " (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2]
-           << ") m";
-      os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
-         << ", t = " << last_good_time_ << " s";
-      observer.last_good_state(last_good_step_, last_good_time_, last_good_);
-      throw InstabilityError(os.str());
-    };
-    const std::string too_large =
-      "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
-      "near 1) or a loading rate far above quasi-static";
-    // one pass over the particles, a contiguous chunk per thread; the chunks' results are
-    // combined in chunk order, so the first bad particle, the fastest one and the one with the
-    // smallest step are the lowest-index ones, as in a serial loop, and the kinetic energy is the
-    // same for a given thread count
-    struct Scan
-    {
-      long bad = -1;              // first particle that is non-finite or out of the domain
-      bool bad_finite = true;     // ... and whether it was finite (then: out of the domain)
-      double kinetic = 0, dt_min = 1e300, v_max = 0;
-      unsigned int i_dt = 0, i_v = 0;
-    };
-    std::vector<Scan> scans(static_cast<std::size_t>(omp_get_max_threads()));
-#pragma omp parallel
-    {
-      const long t = omp_get_thread_num(), nt = omp_get_num_threads();
-      Scan &r      = scans[t];
-      for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
-      {
-        const auto &s3 = body_->stress3(i);
-        const bool finite =
-          std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
-          std::isfinite(s3.sum() + h[i]);
-        if (!finite || !(std::abs(x[i][0]) < domain_size_ && std::abs(x[i][1]) < domain_size_ &&
-                         std::abs(x[i][2]) < domain_size_))
-        {
-          r.bad        = i;
-          r.bad_finite = finite;
-          break;
-        }
-        const double speed = v[i].norm();
-        r.kinetic += 0.5 * m[i] * speed * speed;
-        if (speed > r.v_max)
-        {
-          r.v_max = speed;
-          r.i_v   = static_cast<unsigned int>(i);
-        }
-        const double dt_i = h[i] / (c + speed);
-        if (dt_i < r.dt_min)
-        {
-          r.dt_min = dt_i;
-          r.i_dt   = static_cast<unsigned int>(i);
-        }
-      }
-    }
-    double kinetic = 0, dt_min = 1e300, v_max = 0;
-    unsigned int i_dt = 0, i_v = 0;
-    for (const Scan &r : scans)
-    {
-      if (r.bad >= 0)
-      {
-        if (!r.bad_finite)
-          fail("non-finite position, velocity, stress or smoothing length", r.bad, too_large);
-        fail("a particle left the domain (|x| >= " + std::to_string(domain_size_) + " m)", r.bad,
-             too_large + ", or a platen that lost contact");
-      }
-      kinetic += r.kinetic;
-      if (r.v_max > v_max)
-      {
-        v_max = r.v_max;
-        i_v   = r.i_v;
-      }
-      if (r.dt_min < dt_min)
-      {
-        dt_min = r.dt_min;
-        i_dt   = r.i_dt;
-      }
-    }
-    const double work = std::max(0.0, frame_work_ + pressure_work_);
-    if (kinetic > 10.0 * (work + energy_floor_))
-    {
-      std::ostringstream os;
-      os << "rock kinetic energy " << kinetic << " J above ten times the work done on it plus "
-         << "the start-up allowance (" << work << " + " << energy_floor_
-         << " J), fastest particle |v| = " << v_max << " m/s";
-      fail(os.str(), i_v, too_large);
-    }
-    // the step in use is fixed; the stable one shrinks when particles approach the wave speed or
-    // smoothing lengths collapse
-    const double dt_stable = prm_.sph.tssfac * dt_min;
-    if (dt_stable < 0.5 * dt_)
-    {
-      std::ostringstream os;
-      os << "collapsing time step: the stable step " << dt_stable << " s fell below half the step "
-         << "in use " << dt_ << " s (|v| = " << v[i_dt].norm() << " m/s, h = " << h[i_dt] << " m)";
-      fail(os.str(), i_dt, too_large);
-    }
-    const std::array<const fem::SteelBody *, 2> platens{{top_.get(), bottom_.get()}};
-    for (int k = 0; k < 2; ++k)
-    {
-      const fem::SteelBody &pl = *platens[k];
-      if (!std::isfinite(pl.reaction_force() + pl.kinetic_energy() + pl.loaded_face_displacement()))
-      {
-        std::ostringstream os;
-        os << "non-finite state of the " << (k == 0 ? "top" : "bottom") << " platen (reaction "
-           << pl.reaction_force() << " N, kinetic energy " << pl.kinetic_energy()
-           << " J, loaded-face displacement " << pl.loaded_face_displacement() << " m)";
-        const std::vector<double> xc = pl.contact_positions();
-        for (std::size_t j = 0; j < xc.size() / 3; ++j)
-          if (!std::isfinite(xc[3 * j] + xc[3 * j + 1] + xc[3 * j + 2]))
-          {
-            os << ", first non-finite contact node " << j;
-            break;
-          }
-        fail(os.str(), -1,
-             "a platen time step above its stable limit or a contact stiffness near its bound "
-             "(Platens/Contact stiffness scale)");
-      }
-    }
+    Measurement m;
+    m.row = history_row();
+    // the rock's own energies, and of its kinetic energy only the part that is not a homogeneous
+    // deformation (see the quasi-static check in run())
+    m.rock_kinetic  = non_affine_kinetic_energy(*body_);
+    m.rock_internal = body_->energies().internal;
+    return m;
+  }
 
-    // the state passed: keep it as the last good one (buffers reused, no allocation per step)
-    last_good_.n = n;
-    last_good_.position.resize(3 * n);
-    last_good_.velocity.resize(3 * n);
-    last_good_.displacement.resize(3 * n);
-    last_good_.stress.resize(6 * n);
-    last_good_.plastic_strain.resize(n);
-    last_good_.damage.resize(n);
-    const auto &x0 = body_->reference_positions();
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < static_cast<long>(n); ++i)
+  std::string SpecimenDriver::stop_reason(const HistoryRow &r)
+  {
+    failure_->observe(*body_, r.stress);
+    const bool loading = time_ > plan_.confinement_time;
+    // the load the specimen carries: mean of both load cells (the stress wave that crosses
+    // the specimen at the start makes each one oscillate on its own)
+    const double load = 0.5 * (r.force + r.force_bottom);
+    peak_force_       = loading ? std::max(peak_force_, load) : peak_force_;
+    // the failure criterion is armed once the specimen yields somewhere or has passed half of
+    // its expected failure strain, so that the start-up transient cannot end the run
+    // strain counts from the first contact on both sides: curved jaws start with a gap
+    // (the arc over the lattice's discrete top), which the platen closes first
+    if (!touching_ && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
     {
-      for (int d = 0; d < 3; ++d)
-      {
-        last_good_.position[3 * i + d]     = x[i][d];
-        last_good_.velocity[3 * i + d]     = v[i][d];
-        last_good_.displacement[3 * i + d] = x[i][d] - x0[i][d];
-      }
-      const auto &t      = body_->stress3(i);
-      const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
-      std::copy(s6, s6 + 6, last_good_.stress.begin() + 6 * i);
-      last_good_.plastic_strain[i] = body_->plastic_strain(i);
-      last_good_.damage[i]         = body_->damage(i);
+      touching_     = true;
+      touch_strain_ = r.strain;
     }
-    last_good_step_ = n_steps_;
-    last_good_time_ = time_;
+    armed_ = armed_ || r.n_failed > 0 ||
+             (touching_ && r.strain - touch_strain_ > 0.5 * plan_.expected_failure_strain);
+    // the load has fallen past the post-peak drop: the specimen has failed
+    if (loading && armed_ && peak_force_ > 0 &&
+        load < (1.0 - prm_.loading.post_peak_drop) * peak_force_)
+      return "post-peak drop";
+    return "";
   }
 
   namespace
   {
-    // the laboratory-test columns (the cutting columns rolling_force, side_force stay zero here)
-    constexpr std::size_t history_width = 13; // HistoryRow without the cutting forces
+    /// driver.scalars: time, steps, frame and pressure work, peak, armed, dt, sub-steps,
+    /// particles, touching, touch strain
+    constexpr std::size_t n_scalars = 11;
   } // namespace
 
   void SpecimenDriver::save_state(StateArrays &out) const
@@ -702,8 +577,6 @@ namespace coupling
                              static_cast<double>(n_steps_),
                              frame_work_,
                              pressure_work_,
-                             next_row_,
-                             next_snap_,
                              peak_force_,
                              armed_ ? 1.0 : 0.0,
                              dt_,
@@ -711,30 +584,21 @@ namespace coupling
                              static_cast<double>(body_->n_particles()),
                              touching_ ? 1.0 : 0.0,
                              touch_strain_};
-    std::vector<double> history;
-    history.reserve(history_width * rows_.size());
-    for (const auto &r : rows_)
-      append_history_row(history, r, history_width);
-    out["driver.history"] = std::move(history);
     out["driver.failure"] = failure_->state();
-    out["driver.rock_kinetic"]  = rock_kinetic_;
-    out["driver.rock_internal"] = rock_internal_;
   }
 
   void SpecimenDriver::load_state(const StateArrays &in)
   {
     const auto s = in.find("driver.scalars");
-    const auto h = in.find("driver.history");
-    if (s == in.end() || s->second.size() != 13 || h == in.end() ||
-        h->second.size() % history_width != 0)
-      throw InputError("checkpoint: no driver state (driver.scalars, driver.history); not a "
-                       "checkpoint of cosim run");
+    if (s == in.end() || s->second.size() != n_scalars)
+      throw InputError("checkpoint: no driver.scalars of a laboratory test; not a checkpoint of "
+                       "a UCS, BTS or CTCS run of this cosim");
     const auto &d = s->second;
     // the same case gives the same particle count, time step and sub-cycling, bit for bit
-    if (d[10] != body_->n_particles() || d[8] != dt_ || d[9] != n_substeps_)
+    if (d[8] != body_->n_particles() || d[6] != dt_ || d[7] != n_substeps_)
     {
       std::ostringstream os;
-      os << "checkpoint: it holds " << d[10] << " particles at dt = " << d[8]
+      os << "checkpoint: it holds " << d[8] << " particles at dt = " << d[6]
          << " s, this case has " << body_->n_particles() << " at dt = " << dt_
          << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
@@ -755,26 +619,14 @@ namespace coupling
     n_steps_       = static_cast<std::size_t>(d[1]);
     frame_work_    = d[2];
     pressure_work_ = d[3];
-    next_row_      = d[4];
-    next_snap_     = d[5];
-    peak_force_    = d[6];
-    armed_         = d[7] != 0.0;
-    touching_      = d[11] != 0.0;
-    touch_strain_  = d[12];
+    peak_force_    = d[4];
+    armed_         = d[5] != 0.0;
+    touching_      = d[9] != 0.0;
+    touch_strain_  = d[10];
     const auto f = in.find("driver.failure");
     if (f == in.end() || f->second.size() != failure_->state().size())
       throw InputError("checkpoint: no driver.failure array; a checkpoint of an older cosim?");
     failure_->set_state(f->second);
-    const auto k = in.find("driver.rock_kinetic"), u = in.find("driver.rock_internal");
-    if (k == in.end() || u == in.end() || k->second.size() != h->second.size() / history_width ||
-        u->second.size() != k->second.size())
-      throw InputError("checkpoint: no driver.rock_kinetic / rock_internal per history row; a "
-                       "checkpoint of an older cosim?");
-    rock_kinetic_  = k->second;
-    rock_internal_ = u->second;
-    rows_.clear();
-    for (std::size_t k = 0; k < h->second.size() / history_width; ++k)
-      rows_.push_back(history_row_at(h->second, k, history_width));
   }
 
   ParticleSnapshot SpecimenDriver::particle_snapshot() const
@@ -797,77 +649,27 @@ namespace coupling
     const double row_interval  = t_plan / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_plan / std::max(1, prm_.output.n_snapshots);
 
-    if (resume)
-    {
-      load_state(*resume);
-      for (const auto &r : rows_)
-        observer.history(r);
-    }
-    check_stability(observer); // the start (or the restored state) is the first good state
-
-    auto last_checkpoint    = std::chrono::steady_clock::now();
-    const auto &rows        = rows_;
-    bool stop               = false;
-    std::string stop_reason = "end strain";
-    while (!stop)
-    {
-      step();
-      check_stability(observer);
-      const bool last = time_ >= t_end;
-      if (time_ >= next_row_ || last)
-      {
-        const HistoryRow r = measure();
-        if (!std::isfinite(r.force + r.kinetic_energy + r.internal_energy))
-          throw InstabilityError("step " + std::to_string(n_steps_) +
-                                 ": non-finite platen force or energy; likely cause: a time step "
-                                 "above the stable limit");
-        rows_.push_back(r);
-        const sph::Energies rock = body_->energies();
-        rock_kinetic_.push_back(non_affine_kinetic_energy(*body_));
-        rock_internal_.push_back(rock.internal);
-        observer.history(r);
-        failure_->observe(*body_, r.stress);
-        next_row_ += row_interval;
-        const bool loading = time_ > plan_.confinement_time;
-        // the load the specimen carries: mean of both load cells (the stress wave that crosses
-        // the specimen at the start makes each one oscillate on its own)
-        const double load = 0.5 * (r.force + r.force_bottom);
-        peak_force_       = loading ? std::max(peak_force_, load) : peak_force_;
-        // the failure criterion is armed once the specimen yields somewhere or has passed half of
-        // its expected failure strain, so that the start-up transient cannot end the run
-        // strain counts from the first contact on both sides: curved jaws start with a gap
-        // (the arc over the lattice's discrete top), which the platen closes first
-        if (!touching_ && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
-        {
-          touching_     = true;
-          touch_strain_ = r.strain;
-        }
-        armed_ = armed_ || r.n_failed > 0 ||
-                (touching_ && r.strain - touch_strain_ > 0.5 * plan_.expected_failure_strain);
-        // the load has fallen past the post-peak drop: the specimen has failed
-        if (loading && armed_ && peak_force_ > 0 &&
-            load < (1.0 - prm_.loading.post_peak_drop) * peak_force_)
-        {
-          stop        = true;
-          stop_reason = "post-peak drop";
-        }
-        if (last)
-          stop = true;
-      }
-      if (time_ >= next_snap_ || stop)
-      {
-        observer.snapshot(time_, particle_snapshot(), mesh_snapshots());
-        next_snap_ += snap_interval;
-      }
-      if (n_steps_ % 20 == 0 || stop)
-        observer.progress(n_steps_, time_, std::min(1.0, time_ / t_plan));
-      if (stop)
-        break;
-
-      // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
-      checkpoint_or_stop(observer, prm_.output, n_steps_, time_, last_checkpoint,
-                         [this](StateArrays &state) { save_state(state); });
-    }
+    RunSchedule schedule;
+    schedule.end_time          = t_end;
+    schedule.progress_time     = t_plan;
+    schedule.row_interval      = row_interval;
+    schedule.snapshot_interval = snap_interval;
+    schedule.end_reason        = "end strain";
+    StabilityWatch watch;
+    watch.rock         = body_.get();
+    watch.steel        = {{"top platen", top_.get()}, {"bottom platen", bottom_.get()}};
+    watch.domain_size  = domain_size_;
+    watch.energy_floor = energy_floor_;
+    watch.time_step    = dt_;
+    watch.tssfac       = prm_.sph.tssfac;
+    watch.likely_cause =
+      "a time step above the stable limit (SPH/TSSFAC above 1, Platens/Contact stiffness scale "
+      "near 1) or a loading rate far above quasi-static";
+    RunLoop loop(*this, schedule, std::move(watch), prm_.output);
+    const std::string reason                 = loop.run(observer, resume);
+    const std::vector<HistoryRow> &rows      = loop.rows();
+    const std::vector<double> &rock_kinetic  = loop.rock_kinetic();
+    const std::vector<double> &rock_internal = loop.rock_internal();
 
     // ---- what the laboratory reads off the curves
     Summary s;
@@ -878,7 +680,7 @@ namespace coupling
     s.lattice_area = lattice_area_;
     s.strain_rate  = plan_.strain_rate;
     s.time_step    = dt_;
-    s.stop_reason  = stop_reason;
+    s.stop_reason  = reason;
     std::vector<double> stress, strain, gauge, radial;
     for (const auto &r : rows)
     {
@@ -941,8 +743,8 @@ namespace coupling
       // homogeneous deformation: a specimen loaded at a constant rate moves affinely (at 10 %
       // of the peak that motion alone holds 1.5 % of the elastic energy at the derived rate);
       // the platens' motion is the frame's
-      if (rock_internal_[k] > 0)
-        max_ratio = std::max(max_ratio, rock_kinetic_[k] / rock_internal_[k]);
+      if (rock_internal[k] > 0)
+        max_ratio = std::max(max_ratio, rock_kinetic[k] / rock_internal[k]);
       max_imbalance = std::max(max_imbalance, std::abs(r.force - r.force_bottom) / s.peak_force);
     }
     s.max_kinetic_to_internal_energy = max_ratio;
@@ -971,13 +773,4 @@ namespace coupling
     return s;
   }
 
-  Summary run_case(const CaseParameters &parameters, RunObserver &observer,
-                   const StateArrays *resume)
-  {
-    if (parameters.test == "indentation" || parameters.test == "linear-cutting")
-      return run_cutting_case(parameters, observer, resume);
-    const ThreadLimit threads(parameters.sph.n_threads);
-    SpecimenDriver      test(parameters);
-    return test.run(observer, resume);
-  }
 } // namespace coupling

@@ -4,6 +4,8 @@
 /// penalty contact with friction, a loading path, and the measurements a laboratory makes.
 /// Internal to the coupling library; run_case() is the public entry.
 
+#include "run_loop.h"
+
 #include <coupling/case_parameters.h>
 #include <coupling/contact.h>
 #include <coupling/run_output.h>
@@ -52,33 +54,41 @@ namespace coupling
   /// The loading plan of a case (rate derived from the wave transit time unless given).
   LoadingPlan make_loading_plan(const CaseParameters &p);
 
-  class SpecimenDriver
+  /// UCS, BTS, CTCS: builds the specimen and the platens, takes the coupled steps and measures;
+  /// the run itself (rows, snapshots, checkpoints, stability) is RunLoop's.
+  class SpecimenDriver : private SteppedTest
   {
   public:
     explicit SpecimenDriver(const CaseParameters &parameters);
-    ~SpecimenDriver();
+    ~SpecimenDriver() override;
     /// Runs to the stop criterion; with `resume`, first restores that state (see run_case).
     Summary run(RunObserver &observer, const StateArrays *resume = nullptr);
-    /// The full state after the current step (body, platens, contacts, driver, history so far).
-    void save_state(StateArrays &out) const;
-    /// Restores save_state's arrays; InputError when they belong to another case.
-    void load_state(const StateArrays &in);
 
   private:
+    // ---- SteppedTest: what RunLoop drives
+    void step() override;
+    double time() const override { return time_; }
+    std::size_t n_steps() const override { return n_steps_; }
+    double external_work() const override { return frame_work_ + pressure_work_; }
+    /// The history row and the rock's non-affine kinetic and elastic energies.
+    Measurement measure() override;
+    /// Peak and failure pattern; "post-peak drop" once the load has fallen past
+    /// Loading/Post-peak drop after the criterion is armed.
+    std::string stop_reason(const HistoryRow &row) override;
+    ParticleSnapshot particle_snapshot() const override;
+    std::vector<MeshSnapshot> mesh_snapshots() const override;
+    /// The body, platens, contacts and the driver's clocks and accounts.
+    void save_state(StateArrays &out) const override;
+    /// Restores save_state's arrays; InputError when they belong to another case.
+    void load_state(const StateArrays &in) override;
+
     void build_specimen();
     void build_platens();
     void choose_time_step();
     void select_gauges();
     double top_velocity(double t) const;
-    void step();
     double exchange_imbalance() const;
-    HistoryRow measure() const;
-    /// Every step: non-finite values, particles leaving the domain, kinetic energy past its
-    /// bound, a collapsing stable time step. On failure reports the last good state to `observer`
-    /// and throws InstabilityError; otherwise keeps the current state as the last good one.
-    void check_stability(RunObserver &observer);
-    ParticleSnapshot particle_snapshot() const;
-    std::vector<MeshSnapshot> mesh_snapshots() const;
+    HistoryRow history_row() const;
 
     CaseParameters prm_;
     LoadingPlan plan_;
@@ -102,20 +112,13 @@ namespace coupling
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
     double gauge_length0_ = 0;
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
-    // run-loop state, members so that a checkpoint holds them
-    std::vector<HistoryRow> rows_;
-    // per history row: the rock's non-affine kinetic energy and its elastic energy [J], for the
-    // quasi-static check (see non_affine_kinetic_energy)
-    std::vector<double> rock_kinetic_, rock_internal_;
-    double next_row_ = 0, next_snap_ = 0, peak_force_ = 0;
+    // the stop criterion's state, members so that a checkpoint holds them
+    double peak_force_ = 0;
     bool armed_ = false;
     bool touching_ = false;      // both platens have touched the specimen
     double touch_strain_ = 0;    // nominal strain at that moment
     // stability checks: dt_ = stable step * time_step_scale_ (TSSFAC above 1: the body is built
     // with TSSFAC 1 and the driver scales its step, so that an unstable step can be injected)
     double time_step_scale_ = 1, energy_floor_ = 0;
-    ParticleSnapshot last_good_;
-    std::size_t last_good_step_ = 0;
-    double last_good_time_ = 0;
   };
 } // namespace coupling

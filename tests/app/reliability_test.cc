@@ -212,6 +212,58 @@ TEST(Instability, TssfacFiveIsCaughtWithinOneStepWithItsLastGoodState)
   }
 }
 
+namespace
+{
+  /// Runs a cutter case (indentation or linear cutting, small: 3 mm spacing, a 30 mm block) at
+  /// TSSFAC 5 and checks what TssfacFiveIsCaught... checks for UCS: the run loop catches it within
+  /// one step of its last good state, reports that state and says what, where and why.
+  void expect_caught_with_last_good_state(const std::string &file,
+                                          const std::vector<std::string> &case_options)
+  {
+    std::vector<std::string> o = {"SPH/TSSFAC=5",          "SPH/Particle spacing=0.003",
+                                  "SPH/Threads=2",         "Output/History rows=60",
+                                  "Output/Snapshots=3",    "Output/Progress=false",
+                                  "Cutter/Block width=0.03", "Cutter/Block height=0.03"};
+    o.insert(o.end(), case_options.begin(), case_options.end());
+    const coupling::CaseParameters p = app::read_case_file(file, o).parameters;
+    RunRecorder r;
+    try
+    {
+      coupling::run_case(p, r);
+      FAIL() << p.test << " at TSSFAC 5 ran to the end";
+    }
+    catch (const coupling::InstabilityError &e)
+    {
+      const std::string what = e.what();
+      ASSERT_GE(r.good_step, 0) << "no last good state reported";
+      // every particle of the 30 mm block, whose outer layers are held
+      EXPECT_GT(r.good_particles, 500u);
+      EXPECT_EQ(what.rfind("step " + std::to_string(r.good_step + 1) + ",", 0), 0u) << what;
+      for (const char *part : {"likely cause", "TSSFAC", "Cutter/Speed", "last good state: step"})
+        EXPECT_NE(what.find(part), std::string::npos) << part << " missing in: " << what;
+    }
+  }
+} // namespace
+
+// The cutter drivers share the laboratory tests' run loop: the full stability check (positions,
+// stress, energy, time step, the cutter) and the last good state, not only a finite-position
+// check every few steps.
+TEST(Instability, IndentationAtTssfacFiveIsCaughtWithItsLastGoodState)
+{
+  expect_caught_with_last_good_state(source("cases/indentation/indentation.prm"),
+                                     {"Cutter/Shape=cone", "Cutter/Tip radius=0",
+                                      "Cutter/Penetration=0.006", "Cutter/Speed=4",
+                                      "Cutter/Block length=0.03"});
+}
+
+TEST(Instability, LinearCuttingAtTssfacFiveIsCaughtWithItsLastGoodState)
+{
+  expect_caught_with_last_good_state(source("cases/linear-cutting/linear-cutting.prm"),
+                                     {"Cutter/Disc diameter=0.06", "Cutter/Tip width=0.006",
+                                      "Cutter/Penetration=0.006", "Cutter/Cut length=0.034",
+                                      "Cutter/Block length=0.06"});
+}
+
 TEST(Instability, CosimExitsWithThreeAndWritesTheLastGoodState)
 {
   Sandbox box;

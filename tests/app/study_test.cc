@@ -7,6 +7,7 @@
 #include <diagnose/calibrate.h>
 #include <diagnose/csv.h>
 #include <app/study.h>
+#include <coupling/references.h>
 
 #include <gtest/gtest.h>
 
@@ -140,12 +141,12 @@ TEST(Study, MohrCoulombAxialStrengthIsTheEnvelope)
   // sigma3 = 0: Eq. 14 (calibrate.cc's own closed form); Table 4 M1 gives Table 3's UCS to the
   // rounding of c and phi (two decimals: 0.1 %)
   const double c = 32.99e6, phi = 63.68;
-  EXPECT_NEAR(app::mohr_coulomb_axial_strength(c, phi, 0),
+  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0),
               diagnose::mohr_coulomb_ucs({c, phi}), 1.0);
-  EXPECT_NEAR(app::mohr_coulomb_axial_strength(c, phi, 0), 282.18e6, 0.001 * 282.18e6);
+  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(c, phi, 0), 282.18e6, 0.001 * 282.18e6);
   // slope of the envelope: (1 + sin phi)/(1 - sin phi), exact in sigma3 (linear)
   const double s = std::sin(49.78 * M_PI / 180);
-  EXPECT_NEAR(app::mohr_coulomb_axial_strength(49.17e6, 49.78, 30e6) -
-                app::mohr_coulomb_axial_strength(49.17e6, 49.78, 0),
+  EXPECT_NEAR(coupling::mohr_coulomb_axial_strength(49.17e6, 49.78, 30e6) -
+                coupling::mohr_coulomb_axial_strength(49.17e6, 49.78, 0),
               30e6 * (1 + s) / (1 - s), 1e-6);
 }

@@ -3,7 +3,7 @@
 // the CSM cutter-force estimate against hand-computed numbers.
 #include "run_helpers.h"
 
-#include "../../coupling/src/cutting_driver.h"
+#include <coupling/references.h>
 
 #include <coupling/run_case.h>
 

@@ -24,11 +24,6 @@ namespace app
     std::string description; ///< where `measured` comes from, e.g. "Table 3 UCS"
   };
 
-  /// Mohr-Coulomb axial strength at confinement `sigma3` [Pa] for cohesion `c` [Pa] and friction
-  /// angle `phi_deg` [deg], compression positive: 2c cos(phi)/(1 - sin(phi)) + sigma3 (1 +
-  /// sin(phi))/(1 - sin(phi)).
-  double mohr_coulomb_axial_strength(double c, double phi_deg, double sigma3);
-
   /// `cosim study CASE.prm --key K --values a,b,... [--vary "K=a,b"] [--groups M1,M2|all] [-o
   /// OUTDIR]
   /// [--set "S/K=v"] [--force] [--quiet]` (arguments after the subcommand). Returns the exit

@@ -3,8 +3,10 @@
 /// What a running case hands to whoever records it (the app writes files; tests keep it in
 /// memory). Plain data only: no deal.II, no file formats here.
 
+#include <fem/mesh_snapshot.h>
+#include <sph/state_arrays.h>
+
 #include <cstddef>
-#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,16 +47,9 @@ namespace coupling
     std::vector<double> damage;          ///< [0,1]
   };
 
-  /// A platen mesh at one instant: hexahedra with their 8 vertices in VTK hexahedron order (fem
-  /// gives them so; the writer does not re-map). Vectors flat as above.
-  struct MeshSnapshot
-  {
-    std::string name;                     ///< e.g. "platen_top"
-    std::vector<double> position;         ///< deformed vertex positions [m]
-    std::vector<double> displacement;     ///< [m]
-    std::vector<unsigned int> hexahedra;  ///< 8 vertex indices per cell, VTK hexahedron order
-    std::vector<double> von_mises;        ///< per cell [Pa]
-  };
+  /// A platen or cutter mesh at one instant (fem's type; MeshSnapshot::name names it in the
+  /// output, e.g. "platen_top", "cutter").
+  using fem::MeshSnapshot;
 
   /// Results of one run, as summary.json holds them (docs/design.md).
   struct Summary
@@ -97,9 +92,10 @@ namespace coupling
     return std::nullopt;
   }
 
-  /// The full state of a running case as named flat arrays of doubles (a checkpoint): with it, a
-  /// case built from the same parameters continues bitwise (same thread count).
-  using StateArrays = std::map<std::string, std::vector<double>>;
+  /// The full state of a running case as named flat arrays of doubles (a checkpoint; sph's type,
+  /// which the body, the steel bodies and the coupler save into): with it, a case built from the
+  /// same parameters continues bitwise (same thread count).
+  using sph::StateArrays;
 
   /// Receives what a run produces, in order: any number of progress / history / snapshot calls.
   class RunObserver

@@ -21,6 +21,7 @@
 ///   3. step(t, dt): a = M^-1 (f_ext - K u - beta K v), v += dt a, u += dt v, prescribed motion
 ///      imposed on the loaded face, reaction measured, external forces cleared.
 
+#include <fem/mesh_snapshot.h>
 #include <fem/parameters.h>
 
 #include <array>
@@ -33,22 +34,6 @@
 
 namespace fem
 {
-  /// A platen mesh at one instant, plain arrays. Vertex arrays are flat 3-vectors.
-  struct MeshSnapshot
-  {
-    std::vector<double> position;        ///< deformed vertex positions x0 + u [m]
-    std::vector<double> displacement;    ///< u [m]
-    std::vector<double> velocity;        ///< v at the last half step [m/s]
-    std::vector<unsigned int> hexahedra; ///< 8 vertex indices per cell, VTK_HEXAHEDRON order
-    std::vector<double> von_mises;       ///< von Mises stress at each cell centre [Pa]
-    std::size_t n_vertices() const { return position.size() / 3; }
-    std::size_t n_cells() const { return hexahedra.size() / 8; }
-  };
-
-  /// Write a snapshot as a VTK XML unstructured grid (ASCII), readable by ParaView.
-  /// Throws std::runtime_error naming the file if it cannot be written.
-  void write_vtu(const MeshSnapshot &snapshot, const std::string &filename);
-
   /// A rigid or elastic steel body (platen or cutter): mesh, explicit dynamics, load cell and
   /// coupling interface.
   class SteelBody
@@ -126,6 +111,7 @@ namespace fem
     double damping_dissipation() const; ///< energy taken by stiffness damping [J]
 
     // ---- output and checks ----------------------------------------------------------------
+    /// The mesh now, unnamed (MeshSnapshot::name empty: the caller names it).
     MeshSnapshot mesh_snapshot() const;
     void write_vtu(const std::string &filename) const;
     /// Reference vertex positions [m] and lumped masses [kg] in snapshot vertex order.

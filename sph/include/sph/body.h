@@ -17,6 +17,7 @@
 #include <sph/parameters.h>
 #include <sph/particle_store.h>
 #include <sph/rock_models.h>
+#include <sph/state_arrays.h>
 #include <sph/types.h>
 
 #include <cstdint>
@@ -41,9 +42,6 @@ namespace sph
     double balance_error() const { return external - kinetic - internal - dissipated(); }
   };
 
-  /// The part of a body's state that changes during a run, as named flat arrays of doubles
-  /// (checkpoints; see body_state.cc for the names and layouts).
-  using StateArrays = std::map<std::string, std::vector<double>>;
 
   /// An SPH rock body (dim = 2: plane strain, per unit thickness; dim = 3).
   template <int dim>
