@@ -11,6 +11,7 @@
 #include <coupling/run_case.h>
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
+#include <diagnose/text_input.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -475,14 +476,24 @@ namespace app
                              " (the Cutter section sets the block and the path)");
     }
 
-    /// Parses the case file into `d` (bound to the case's parameters), with our messages.
+    /// How an escaped `\#` (a `#` in a value: a bare one starts a comment) travels through
+    /// deal.II's reader, which cuts a line at any `#`: as this control character, turned back
+    /// into `#` in the text values (restore_hash).
+    constexpr char hidden_hash = '\x1f';
+
+    /// Parses the case file into `d` (bound to the case's parameters), with our messages. The
+    /// text goes through the one input reader first (byte-order mark, line ends, encoding).
     void parse(Declaration &d, const std::string &path, bool json)
     {
-      std::ifstream in(path);
-      if (!in)
-        throw InputError(path + ": cannot open the case file (" +
-                         (fs::exists(path) ? "not readable" : "no such file") +
-                         "); give the path of a .prm file such as cases/ucs/ucs.prm");
+      if (!fs::exists(path))
+        throw InputError(diagnose::clip(path) +
+                         ": cannot open the case file (no such file); give the path of a .prm file such as "
+                         "cases/ucs/ucs.prm");
+      std::string text = diagnose::read_text_file(path, "case file");
+      if (!json)
+        for (std::size_t at = text.find("\\#"); at != std::string::npos; at = text.find("\\#", at))
+          text.replace(at, 2, 1, hidden_hash);
+      std::istringstream in(text);
       try
       {
         if (json)
@@ -494,6 +505,13 @@ namespace app
       {
         throw InputError(json ? json_message(d, path, e) : prm_message(d, path, e));
       }
+    }
+
+    /// A text value as parsed: each `\#` of the file (see hidden_hash) back to `#`.
+    std::string restore_hash(std::string value)
+    {
+      std::replace(value.begin(), value.end(), hidden_hash, '#');
+      return value;
     }
   } // namespace
 
@@ -526,6 +544,9 @@ namespace app
     if (fs::is_directory(path))
       throw InputError(path + ": is a folder; give the path of a .prm case file such as cases/ucs/ucs.prm");
     const bool json = ends_with(path, ".json");
+    if (!json && !ends_with(path, ".prm"))
+      throw InputError(diagnose::clip(path) + ": a case file is a .prm (or .json) file; rename it, e.g. " +
+                       diagnose::clip(fs::path(path).stem().string()) + ".prm");
     CaseFile result;
     CaseParameters &p = result.parameters;
     try
@@ -542,12 +563,13 @@ namespace app
           throw InputError(bad_value(k, v, origins.of(k.full())));
 
       // --- Test
+      p.name = restore_hash(p.name);
       if (p.name.empty())
         p.name = fs::path(path).stem().string();
 
       // --- Rock: the group first, explicit keys override
       coupling::RockCase &rc = p.rock_case;
-      std::string data_directory = rc.data_directory;
+      std::string data_directory = restore_hash(rc.data_directory);
       if (data_directory.empty())
         data_directory = app::data_directory().string();
       else if (fs::path(data_directory).is_relative() && !origins.by_option("Rock/Data directory"))
@@ -595,14 +617,15 @@ namespace app
 
       // used_parameters.prm: the final values, the group's included
       const keys::RockOverrides &o = d.overrides;
-      d.set("Test", "Name", p.name);
+      d.set("Test", "Name", diagnose::escape_prm_value(p.name));
       d.set("Rock", "Youngs modulus", format(p.rock.youngs_modulus));
       d.set("Rock", "Poissons ratio", format(p.rock.poissons_ratio));
       d.set("Rock", "Cohesion", format(p.rock.cohesion));
       d.set("Rock", "Friction angle", format(o.friction_angle_deg.value_or(keys::friction_angle_degrees(p.rock))));
       d.set("Rock", "Tensile strength", format(p.rock.tensile_strength));
       d.set("Rock", "UCS", format(rc.ucs));
-      d.set("Rock", "Data directory", fs::absolute(data_directory).lexically_normal().string());
+      d.set("Rock", "Data directory",
+            diagnose::escape_prm_value(fs::absolute(data_directory).lexically_normal().string()));
       rc.data_directory = fs::absolute(data_directory).lexically_normal().string();
       std::ostringstream used;
       used << "# cosim " << version() << " (commit " << commit() << ")\n"

@@ -98,7 +98,7 @@ namespace coupling
     const sph::Lattice<3> lattice = sph::make_block<3>(lower, upper, dx);
     try
     {
-      body_ = std::make_unique<sph::Body<3>>(sph_numerics(prm_.sph), sph_material(prm_.rock),
+      body_ = std::make_unique<sph::Body<3>>(sph_numerics(prm_.sph), prm_.rock,
                                              lattice.positions, lattice.volumes);
     }
     catch (const std::invalid_argument &e)

@@ -23,19 +23,6 @@ namespace coupling
   namespace
   {
     constexpr double pi = 3.14159265358979323846;
-    sph::MaterialParameters material(const sph::MaterialParameters &r)
-    {
-      return r;
-    }
-
-    sph::Parameters numerics(const sph::Parameters &s)
-    {
-      sph::Parameters p = s;
-      // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
-      p.tssfac = std::min(s.tssfac, 1.0);
-      return p;
-    }
-
     /// Smooth start of the platen: 0 at t = 0, 1 from t = ramp on, C1 (sin^2 ramp).
     double ramp(double t, double t_ramp)
     {
@@ -48,14 +35,12 @@ namespace coupling
     }
   } // namespace
 
-  sph::MaterialParameters sph_material(const sph::MaterialParameters &rock)
-  {
-    return material(rock);
-  }
-
   sph::Parameters sph_numerics(const sph::Parameters &sph)
   {
-    return numerics(sph);
+    sph::Parameters p = sph;
+    // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
+    p.tssfac = std::min(sph.tssfac, 1.0);
+    return p;
   }
 
   double model_ucs(const sph::MaterialParameters &r)
@@ -151,7 +136,7 @@ namespace coupling
     contact_radius_               = 0.5 * lattice.cell_size[2];
     try
     {
-      body_ = std::make_unique<sph::Body<3>>(numerics(prm_.sph), material(prm_.rock),
+      body_ = std::make_unique<sph::Body<3>>(sph_numerics(prm_.sph), prm_.rock,
                                              lattice.positions, lattice.volumes);
     }
     catch (const std::invalid_argument &e)

@@ -1,5 +1,7 @@
 #include <diagnose/calibrate.h>
 
+#include <coupling/references.h>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -32,8 +34,7 @@ namespace diagnose
 
   double mohr_coulomb_ucs(const MohrCoulombStrength &s)
   {
-    const double phi = radians(s.friction_angle);
-    return 2.0 * s.cohesion * std::cos(phi) / (1.0 - std::sin(phi));
+    return coupling::mohr_coulomb_axial_strength(s.cohesion, s.friction_angle, 0.0);
   }
 
   double mohr_coulomb_bts(const MohrCoulombStrength &s)

@@ -804,10 +804,10 @@ TEST(HostileInput, DiagnoseHugeSecondFolderClipped)
   expect_refused(box.dir(), {"diagnose", "data", std::string(100000, 'd')}, {"one DATA_DIR", "bytes)"});
 }
 
-// Case-file fixes: the helpers exist (diagnose/text_input.h); these pass once app/src/case_file.cc
-// reads the file through diagnose::read_text_file (BOM), refuses an extension other than .prm in
-// its own words, and writes and reads values with escape_prm_value / strip_prm_comment (`#`).
-TEST(HostileCaseFile, DISABLED_CaseFileWithBomAccepted)
+// Case files: read through diagnose::read_text_file (a byte-order mark is dropped), an extension
+// other than .prm or .json refused in cosim's own words, `#` in a value kept across
+// used_parameters.prm and --restart.
+TEST(HostileCaseFile, CaseFileWithBomAccepted)
 {
   Sandbox box;
   box.write("c.prm", "\xEF\xBB\xBF" + read_file(ucs_case));
@@ -831,7 +831,7 @@ TEST(HostileInput, HexNumberInSetIsOneShortLine)
   expect_refused(box.dir(), quick({"run", ucs_case, "--set", "SPH/CSLH=0x1p0"}), {"SPH/CSLH", "0x1p0"});
 }
 
-TEST(HostileCaseFile, DISABLED_UnknownExtensionIsOneShortLine)
+TEST(HostileCaseFile, UnknownExtensionIsOneShortLine)
 {
   Sandbox box;
   box.write("c.txt", read_file(ucs_case));
@@ -842,7 +842,7 @@ TEST(HostileCaseFile, DISABLED_UnknownExtensionIsOneShortLine)
   EXPECT_EQ(r.err.find("Stacktrace"), std::string::npos) << "a message, not a library dump: " << r.err;
 }
 
-TEST(HostileCaseFile, DISABLED_HashInDataDirectorySurvivesRestart)
+TEST(HostileCaseFile, HashInDataDirectorySurvivesRestart)
 {
   Sandbox box;
   const std::string data = data_copy(box.dir() / "d#1");

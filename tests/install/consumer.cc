@@ -22,7 +22,7 @@ int main()
 
   // an elastic UCS at 8 mm spacing (the coarsest the specimen allows: a sixth of its diameter), stopped at 0.05 % strain: a few hundred steps
   coupling::CaseParameters parameters;
-  parameters.rock.model           = "elastic";
+  parameters.rock.model           = sph::RockModel::elastic;
   parameters.sph.spacing          = 0.008;
   parameters.loading.end_strain   = 5e-4;
   parameters.output.progress      = false;

@@ -46,7 +46,7 @@ namespace diagnose
 
   /// `value` written for a parameter file: every `#` (which starts a comment there) written as
   /// `\#`, so that a path with `#` survives used_parameters.prm and --restart. deal.II 9.4 does
-  /// not read `\#` back by itself: the reader passes each line through strip_prm_comment first.
+  /// not read `\#` back by itself: app/src/case_file.cc carries it through the parser.
   std::string escape_prm_value(const std::string &value);
 
   /// One line of a parameter file without its comment: everything from the first `#` that is
