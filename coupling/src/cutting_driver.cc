@@ -375,10 +375,7 @@ namespace coupling
     r.dissipated_energy = e.dissipated() + contact_->friction_dissipation() +
                           cutter_->damping_dissipation() + released_energy_;
     r.external_work = frame_work_;
-    double failed   = 0;
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
-    r.n_failed = failed;
+    r.n_failed = n_failed_particles(*body_);
     return r;
   }
 

@@ -16,6 +16,14 @@
 
 namespace coupling
 {
+  double n_failed_particles(const sph::Body<3> &body)
+  {
+    double failed = 0;
+    for (unsigned int i = 0; i < body.n_particles(); ++i)
+      failed += body.damage(i) >= 1.0 ? 1.0 : 0.0;
+    return failed;
+  }
+
   double non_affine_kinetic_energy(const sph::Body<3> &body)
   {
     const auto &x = body.positions();

@@ -34,6 +34,9 @@ namespace coupling
   /// lattice of spacing `spacing`, its Weibull strength factor; nothing for a homogeneous rock.
   void apply_strength_scatter(sph::Body<3> &body, const RockCase &rock, double spacing);
 
+  /// Number of particles of `body` that have failed (damage 1), as history.csv counts them.
+  double n_failed_particles(const sph::Body<3> &body);
+
   /// Kinetic energy of the body's motion other than a homogeneous deformation: of v - (a + B x),
   /// with a, B the mass-weighted least-squares affine fit of the velocity field [J]. A specimen
   /// loaded quasi-statically moves affinely (rigid motion plus a uniform strain rate), so what

@@ -500,10 +500,7 @@ namespace coupling
                           contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
                           bottom_->damping_dissipation();
     r.external_work = frame_work_ + pressure_work_;
-    double failed   = 0;
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
-    r.n_failed = failed;
+    r.n_failed = n_failed_particles(*body_);
     return r;
   }
 
