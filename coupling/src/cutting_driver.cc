@@ -96,16 +96,7 @@ namespace coupling
     const sph::Vector<3> lower(0.0, -0.5 * c.block_width, -c.block_height);
     const sph::Vector<3> upper(c.block_length, 0.5 * c.block_width, 0.0);
     const sph::Lattice<3> lattice = sph::make_block<3>(lower, upper, dx);
-    try
-    {
-      body_ = std::make_unique<sph::Body<3>>(sph_numerics(prm_.sph), prm_.rock,
-                                             lattice.positions, lattice.volumes);
-    }
-    catch (const std::invalid_argument &e)
-    {
-      throw InputError(e.what());
-    }
-    apply_strength_scatter(*body_, prm_.rock_case, dx);
+    body_ = make_rock_body(prm_, lattice);
     volume0_ = lattice.volumes;
     contact_radius_ = 0.5 * lattice.cell_size[2];
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a

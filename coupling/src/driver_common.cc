@@ -68,13 +68,30 @@ namespace coupling
     return fp;
   }
 
-  void apply_strength_scatter(sph::Body<3> &body, const RockCase &rock, const double spacing)
+  sph::Parameters sph_numerics(const sph::Parameters &sph)
   {
-    if (rock.strength_scatter <= 0)
-      return;
-    body.set_strength_factors(sph::weibull_strength_factors<3>(
-      body.reference_positions(), spacing, rock.strength_scatter,
-      static_cast<std::uint64_t>(rock.scatter_seed)));
+    sph::Parameters p = sph;
+    p.tssfac          = std::min(sph.tssfac, 1.0);
+    return p;
+  }
+
+  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice)
+  {
+    std::unique_ptr<sph::Body<3>> body;
+    try
+    {
+      body = std::make_unique<sph::Body<3>>(sph_numerics(p.sph), p.rock, lattice.positions, lattice.volumes);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      throw InputError(e.what());
+    }
+    const RockCase &rock = p.rock_case;
+    if (rock.strength_scatter > 0)
+      body->set_strength_factors(sph::weibull_strength_factors<3>(
+        body->reference_positions(), p.sph.spacing, rock.strength_scatter,
+        static_cast<std::uint64_t>(rock.scatter_seed)));
+    return body;
   }
 
   ParticleSnapshot particle_snapshot(const sph::Body<3> &body)

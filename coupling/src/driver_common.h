@@ -9,6 +9,9 @@
 #include <coupling/run_output.h>
 
 #include <fem/parameters.h>
+#include <sph/lattice.h>
+
+#include <memory>
 
 #include <string>
 #include <vector>
@@ -30,9 +33,14 @@ namespace coupling
   /// and damage of every particle.
   ParticleSnapshot particle_snapshot(const sph::Body<3> &body);
 
-  /// Heterogeneous rock (Rock/Strength scatter > 0): gives every particle of `body`, built on a
-  /// lattice of spacing `spacing`, its Weibull strength factor; nothing for a homogeneous rock.
-  void apply_strength_scatter(sph::Body<3> &body, const RockCase &rock, double spacing);
+  /// The SPH numerics the body takes: the case's own, with TSSFAC capped at 1 (a driver scales a
+  /// larger step itself).
+  sph::Parameters sph_numerics(const sph::Parameters &sph);
+
+  /// The rock body of case `p` on `lattice` (of spacing SPH/Particle spacing): the case's
+  /// numerics (sph_numerics) and rock, and for a heterogeneous rock (Rock/Strength scatter > 0)
+  /// every particle's Weibull strength factor. InputError for what the SPH body refuses.
+  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice);
 
   /// Number of particles of `body` that have failed (damage 1), as history.csv counts them.
   double n_failed_particles(const sph::Body<3> &body);

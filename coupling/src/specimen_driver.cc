@@ -35,13 +35,6 @@ namespace coupling
     }
   } // namespace
 
-  sph::Parameters sph_numerics(const sph::Parameters &sph)
-  {
-    sph::Parameters p = sph;
-    // the body accepts TSSFAC <= 1; above, the driver scales the step (choose_time_step)
-    p.tssfac = std::min(sph.tssfac, 1.0);
-    return p;
-  }
 
   double model_ucs(const sph::MaterialParameters &r)
   {
@@ -134,17 +127,7 @@ namespace coupling
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
     contact_radius_               = 0.5 * lattice.cell_size[2];
-    try
-    {
-      body_ = std::make_unique<sph::Body<3>>(sph_numerics(prm_.sph), prm_.rock,
-                                             lattice.positions, lattice.volumes);
-    }
-    catch (const std::invalid_argument &e)
-    {
-      throw InputError(e.what());
-    }
-    // heterogeneous rock: a Weibull strength factor per particle (Rock/Strength scatter)
-    apply_strength_scatter(*body_, prm_.rock_case, dx);
+    body_                         = make_rock_body(prm_, lattice);
     failure_ = std::make_unique<FailureWatch>(*body_, bts_);
     // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
     if (!bts_ && prm_.loaded_face_correction)

@@ -42,9 +42,6 @@ namespace coupling
     double planned_strain          = 0; ///< strain at which the planned path ends [-]
   };
 
-  /// The SPH numerics the body takes: the case's own, with TSSFAC capped at 1 (the driver scales
-  /// a larger step itself).
-  sph::Parameters sph_numerics(const sph::Parameters &sph);
 
   /// Strength the rock model predicts in uniaxial compression and uniaxial tension [Pa].
   double model_ucs(const sph::MaterialParameters &rock);
