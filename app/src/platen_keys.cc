@@ -12,6 +12,38 @@ namespace app::keys
                "rigid (prescribed) or elastic steel (FEM)");
     s.add<double>("Friction coefficient", pl.friction, "Coulomb friction rock-platen [-]",
                   [](double v) { return v >= 0 && v <= 2; }, "must be in [0, 2]");
+    s.add<double>("Dynamic friction coefficient", pl.dynamic_friction,
+                  "sliding friction [-]; -1 = the Friction coefficient (static)",
+                  [](double v) { return v == -1 || (v >= 0 && v <= 2); }, "must be -1 (as static) or in [0, 2]");
+    s.check("Dynamic friction coefficient", [&pl]() {
+      return pl.dynamic_friction <= pl.friction ? std::string()
+                                                : "must not exceed the Friction coefficient (static, " +
+                                                    format(pl.friction) + ")";
+    });
+    s.add_enum("Contact method", pl.contact_method, "penalty|kinematic",
+               {coupling::ContactMethod::penalty, coupling::ContactMethod::kinematic},
+               "penalty spring (Contact stiffness scale) or kinematic constraint (no stiffness; "
+               "the predicted penetration removed each step)");
+    s.check("Contact method", [&p]() {
+      const coupling::PlatenParameters &pl = p.platens;
+      if (pl.contact_method != coupling::ContactMethod::kinematic)
+        return std::string();
+      if (p.test != "UCS" && p.test != "BTS" && p.test != "CTCS")
+        return "kinematic is for UCS, BTS and CTCS; " + p.test + " uses penalty";
+      return pl.contact_stiffness_scale == 0.1
+               ? std::string()
+               : std::string("kinematic has no stiffness: leave Contact stiffness scale at its default (0.1, "
+                             "read by the penalty method only)");
+    });
+    s.add_enum("Bonded", pl.bonded, "false|true", {false, true},
+               "rock tied to the platen once touched (no slip, no separation; kinematic contact only)");
+    s.check("Bonded", [&pl]() {
+      if (!pl.bonded)
+        return std::string();
+      if (pl.contact_method != coupling::ContactMethod::kinematic)
+        return std::string("needs Contact method = kinematic");
+      return pl.friction == 0 ? std::string() : std::string("a bonded interface has no friction; leave Friction coefficient 0");
+    });
     s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
                   "must be in (0, 1e13) Pa");
     s.add<double>("Poissons ratio", steel.poissons_ratio, "[-]", [](double v) { return v >= 0 && v < 0.5; },

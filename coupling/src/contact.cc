@@ -291,6 +291,8 @@ namespace coupling
                                     std::vector<double> &force_on_particles,
                                     std::vector<double> &force_on_nodes)
   {
+    if (prm_.method == ContactMethod::kinematic)
+      return apply_kinematic(pt, s, dt, force_on_particles, force_on_nodes);
     build_face_grid(s);
     const double k0   = prm_.stiffness;
     const double mu_s = prm_.friction_static, mu_d = prm_.friction_dynamic;

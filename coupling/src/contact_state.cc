@@ -12,13 +12,15 @@ namespace coupling
   void PenaltyContact::save_state(std::map<std::string, std::vector<double>> &out,
                                   const std::string &prefix) const
   {
-    std::vector<double> spring(3 * friction_.size()), sliding(friction_.size());
+    std::vector<double> spring(3 * friction_.size()), sliding(friction_.size()), tied(friction_.size());
     for (std::size_t i = 0; i < friction_.size(); ++i)
     {
       for (int d = 0; d < 3; ++d)
         spring[3 * i + d] = friction_[i].tangential_force[d];
       sliding[i] = friction_[i].sliding ? 1.0 : 0.0;
+      tied[i]    = friction_[i].tied ? 1.0 : 0.0;
     }
+    out[prefix + "tied"]             = std::move(tied);
     out[prefix + "tangential_force"] = std::move(spring);
     out[prefix + "sliding"]          = std::move(sliding);
     out[prefix + "scalars"]          = {normal_force_, penalty_energy_, friction_dissipation_,
@@ -43,6 +45,14 @@ namespace coupling
       for (int d = 0; d < 3; ++d)
         friction_[i].tangential_force[d] = spring[3 * i + d];
       friction_[i].sliding = sliding[i] != 0.0;
+    }
+    // a bonded interface's ties; absent from checkpoints of versions before bonded interfaces,
+    // which had none
+    if (in.count(prefix + "tied"))
+    {
+      const auto &tied = find("tied", friction_.size());
+      for (std::size_t i = 0; i < friction_.size(); ++i)
+        friction_[i].tied = tied[i] != 0.0;
     }
     const auto &s         = find("scalars", 4);
     normal_force_         = s[0];

@@ -253,7 +253,8 @@ namespace coupling
     cp.stiffness =
       prm_.platens.contact_stiffness_scale * stable_contact_stiffness(m_particle, m_node, dt_sph);
     contact_stiffness_ = cp.stiffness;
-    cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
+    cp.friction_static  = prm_.platens.friction;
+    cp.friction_dynamic = prm_.platens.dynamic_friction < 0 ? prm_.platens.friction : prm_.platens.dynamic_friction;
     cp.radius                                = contact_radius_;
     // every cutter is convex towards the rock (flat punch: flat, where both rules agree)
     cp.convex_master = true;

@@ -305,8 +305,11 @@ namespace coupling
     // alone). The coupled step is dt_sph / sqrt(1 + s f), f the largest stiffness factor of the
     // loaded faces, so that the rock's stiffness and the stiffest contact spring together stay
     // inside the bound (coupled_time_step() gives the proof).
-    const double s = prm_.platens.contact_stiffness_scale;
-    dt_            = coupled_time_step(dt_sph, s * largest_factor);
+    // The kinematic constraint has no stiffness and adds no bound: the coupled step is the
+    // rock's own.
+    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
+    const double s       = prm_.platens.contact_stiffness_scale;
+    dt_                  = kinematic ? dt_sph : coupled_time_step(dt_sph, s * largest_factor);
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
@@ -323,8 +326,11 @@ namespace coupling
     }
     ContactParameters cp;
     cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
-    cp.friction_static = cp.friction_dynamic = prm_.platens.friction;
-    cp.radius                                = contact_radius_;
+    cp.friction_static  = prm_.platens.friction;
+    cp.friction_dynamic = prm_.platens.dynamic_friction < 0 ? prm_.platens.friction : prm_.platens.dynamic_friction;
+    cp.radius           = contact_radius_;
+    cp.method           = prm_.platens.contact_method;
+    cp.bonded           = prm_.platens.bonded;
     contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
     if (!factor.empty())
@@ -377,8 +383,18 @@ namespace coupling
     const ContactSurface s_top = contact_surface(*top_), s_bottom = contact_surface(*bottom_);
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
-    const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
-                                     body_->n_particles()};
+    ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(), body_->n_particles()};
+    if (prm_.platens.contact_method == ContactMethod::kinematic)
+    {
+      // the force of this step before contact, to predict where the step ends
+      const auto &fi = body_->internal_forces(), &fp = body_->pressure_forces();
+      auto &fe       = body_->external_forces();
+      force_before_contact_.resize(3 * body_->n_particles());
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        for (int d = 0; d < 3; ++d)
+          force_before_contact_[3 * i + d] = fi[i][d] + fp[i][d] + fe[i][d];
+      particles.force = force_before_contact_.data();
+    }
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
     std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);

@@ -107,6 +107,7 @@ namespace coupling
     // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
     double gauge_length0_ = 0;
+    std::vector<double> force_before_contact_; ///< kinematic contact: f_int + f_pressure + f_ext [N]
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
     // the stop criterion's state, members so that a checkpoint holds them
     double peak_force_ = 0;

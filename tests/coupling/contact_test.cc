@@ -166,6 +166,122 @@ TEST(ContactFriction, SlidesWhenTangentialForceReachesMuN)
   EXPECT_NEAR(T_slip, mu * N, 0.02 * mu * N);
 }
 
+namespace
+{
+  /// One particle pressed onto a rigid face by N and pulled sideways by T, stepped with the
+  /// body's symplectic Euler update and the kinematic contact; returns the contact's last force
+  /// on the particle and whether it slid at the end.
+  struct BlockResult
+  {
+    std::array<double, 3> force;
+    double drift; ///< tangential displacement over the last half of the steps [m]
+    bool sliding;
+  };
+  BlockResult press_and_pull(const ContactParameters &prm, double N, double T, int steps)
+  {
+    // heavy enough that a sliding block stays on the 20 mm face over the steps
+    const double mass = 1.0, dt = 1e-6;
+    const ContactSurface s = flat_surface(2, 0.02, 0.0, 0.0);
+    PenaltyContact contact(prm, 1);
+    std::vector<double> x{0.01, 0.01, prm.radius}, v{0, 0, 0}, m{mass};
+    BlockResult r{};
+    double x_half = 0;
+    for (int step = 0; step < steps; ++step)
+    {
+      const std::vector<double> f{T, 0.0, -N};
+      std::vector<double> fp(3, 0.0), fn(s.position.size(), 0.0);
+      ContactParticles particles{x.data(), v.data(), m.data(), 1};
+      particles.force = f.data();
+      contact.apply(particles, s, dt, fp, fn);
+      for (int d = 0; d < 3; ++d)
+      {
+        v[d] += dt * (f[d] + fp[d]) / mass;
+        x[d] += dt * v[d];
+        r.force[d] = fp[d];
+      }
+      if (step == steps / 2)
+        x_half = x[0];
+      r.sliding = contact.n_sliding() > 0;
+    }
+    r.drift = x[0] - x_half;
+    // the constraint holds the particle exactly on the face (round-off of the coordinates)
+    EXPECT_NEAR(x[2], prm.radius, 1e-15) << "kinematic contact leaves no penetration";
+    return r;
+  }
+} // namespace
+
+TEST(ContactKinematic, HoldsThePressedParticleOnTheFaceWithNoStiffness)
+{
+  ContactParameters prm;
+  prm.method = ContactMethod::kinematic;
+  prm.radius = 5e-4;
+  const BlockResult r = press_and_pull(prm, 50.0, 0.0, 1000);
+  // the normal force balances the load exactly (no spring, no bounce): round-off
+  EXPECT_NEAR(r.force[2], 50.0, 1e-9);
+  EXPECT_NEAR(r.force[0], 0.0, 1e-12);
+}
+
+TEST(ContactKinematic, CoulombStickBelowMuNAndSlideAtMuDynamicN)
+{
+  // the block-on-a-platen check: stuck below mu_s N, sliding against exactly mu_d N above it
+  ContactParameters prm;
+  prm.method           = ContactMethod::kinematic;
+  prm.radius           = 5e-4;
+  prm.friction_static  = 0.3;
+  prm.friction_dynamic = 0.25;
+  const double N       = 50.0;
+  const BlockResult stuck = press_and_pull(prm, N, 0.99 * 0.3 * N, 10000);
+  EXPECT_FALSE(stuck.sliding);
+  EXPECT_NEAR(stuck.force[0], -0.99 * 0.3 * N, 1e-9); // stick: the pull balanced exactly
+  EXPECT_EQ(stuck.drift, 0.0);
+  const BlockResult slid = press_and_pull(prm, N, 1.01 * 0.3 * N, 10000);
+  EXPECT_TRUE(slid.sliding);
+  // slip: the dynamic force, stable over 10^4 steps (round-off)
+  EXPECT_NEAR(slid.force[0], -0.25 * N, 1e-9);
+  EXPECT_GT(slid.drift, 0.0);
+}
+
+TEST(ContactKinematic, BondedHoldsTensionAndShear)
+{
+  ContactParameters prm;
+  prm.method = ContactMethod::kinematic;
+  prm.radius = 5e-4;
+  prm.bonded = true;
+  // pulled away from the face and sideways: a bond holds both exactly
+  const BlockResult r = press_and_pull(prm, -20.0, 30.0, 1000);
+  EXPECT_NEAR(r.force[2], -20.0, 1e-9);
+  EXPECT_NEAR(r.force[0], -30.0, 1e-9);
+  EXPECT_EQ(r.drift, 0.0);
+}
+
+TEST(ContactKinematic, ForcesOnADeformableFaceCancelAndCloseTheGap)
+{
+  // a patch of particles moving into a face of nodes with mass: each pair force applied once to
+  // each side (momentum exact), and with the node masses shared the predicted gap of a uniform
+  // approach is closed exactly by the pair forces
+  const ContactSurface s = flat_surface(4, 0.04, 0.0, 0.1);
+  ContactParameters prm;
+  prm.method = ContactMethod::kinematic;
+  prm.radius = 5e-4;
+  const Patch p = particle_patch(
+    6, [](int i, int j) { return std::array<double, 3>{0.005 + 0.006 * i, 0.004 + 0.0065 * j, 4.9e-4}; },
+    [](int, int) { return std::array<double, 3>{0.01, -0.02, -0.5}; });
+  PenaltyContact contact(prm, p.m.size());
+  std::vector<double> fp(p.x.size(), 0.0), fn(s.position.size(), 0.0);
+  const double dt = 1e-6;
+  EXPECT_EQ(contact.apply(p.particles(), s, dt, fp, fn), p.m.size());
+  double total[3] = {0, 0, 0}, scale = 0;
+  for (std::size_t i = 0; i < fp.size(); ++i)
+    total[i % 3] += fp[i], scale += std::abs(fp[i]);
+  for (std::size_t i = 0; i < fn.size(); ++i)
+    total[i % 3] += fn[i];
+  for (int d = 0; d < 3; ++d)
+    EXPECT_LT(std::abs(total[d]), 1e-14 * scale) << d;
+  // every particle is stopped in the normal direction, none pulled (no bond)
+  for (std::size_t i = 0; i < p.m.size(); ++i)
+    EXPECT_GT(fp[3 * i + 2], 0.0);
+}
+
 TEST(ContactEnergy, ElasticBounceKeepsEnergy)
 {
   // A particle dropped on a rigid face at k = 0.5 of the stability bound bounces back with its

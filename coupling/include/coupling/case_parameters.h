@@ -7,6 +7,7 @@
 /// are in radians, as sph stores them; the case file speaks degrees and converts where the key is
 /// declared.
 
+#include <coupling/contact.h>
 #include <fem/parameters.h>
 #include <sph/parameters.h>
 
@@ -55,7 +56,13 @@ namespace coupling
     /// true: the element size follows the particle spacing (the driver's rule); false:
     /// steel.element_size as given
     bool element_size_from_spacing = true;
-    double friction = 0.0;        ///< Coulomb friction coefficient rock-platen [-]
+    double friction = 0.0;        ///< Coulomb (static) friction coefficient rock-platen [-]
+    /// dynamic (sliding) friction coefficient [-]; < 0: the same as `friction`
+    double dynamic_friction = -1.0;
+    /// how the interface enforces contact: a penalty spring or the kinematic constraint
+    ContactMethod contact_method = ContactMethod::penalty;
+    /// kinematic only: the rock tied to the platen once touched (no slip, no separation)
+    bool bonded = false;
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     /// penalty stiffness / its stability bound at the rock's own step [-]; the coupled step is

@@ -1,8 +1,11 @@
 #pragma once
 /// @file
-/// Penalty contact with Coulomb friction between rock particles (slaves) and a platen's contact
-/// surface (master): quadrilateral faces over the platen's contact-face nodes, which are the
-/// rock's background particles. Plain data in, plain data out; no sph or fem types here.
+/// Contact with Coulomb friction (or a bond) between rock particles (slaves) and a platen's
+/// contact surface (master): quadrilateral faces over the platen's contact-face nodes, which are
+/// the rock's background particles. Plain data in, plain data out; no sph or fem types here.
+/// Two methods: a penalty spring (stiffness a fraction of its stability bound), or a kinematic
+/// (predictor-corrector) constraint that removes the predicted penetration of each step exactly
+/// and has no stiffness to choose.
 ///
 /// Each contact force is computed once, applied to the particle, and spread over the face's four
 /// nodes with the bilinear shape-function weights at the contact point (weights sum to one), so
@@ -46,6 +49,21 @@ namespace coupling
     const double *velocity = nullptr; ///< [m/s]
     const double *mass     = nullptr; ///< [kg]
     std::size_t n          = 0;
+    /// Force on each particle before contact this step [N] (flat, 3 n): the kinematic method
+    /// predicts the step x + dt (v + dt f / m) of the symplectic Euler update with it
+    const double *force = nullptr;
+  };
+
+  /// How the interface enforces contact.
+  enum class ContactMethod
+  {
+    /// a normal (and tangential stick) spring of stiffness ContactParameters::stiffness
+    penalty,
+    /// the predicted penetration of the step removed exactly: per particle-face pair the normal
+    /// force f_n = -m_eff g* / dt^2 (g* the gap the step would end with, m_eff the pair's
+    /// effective mass), and the tangential force that stops the relative sliding, limited to
+    /// mu f_n (Coulomb stick / slip); no stiffness, no added stability bound
+    kinematic,
   };
 
   struct ContactParameters
@@ -54,6 +72,10 @@ namespace coupling
     double friction_static  = 0.0; ///< Coulomb static coefficient [-]
     double friction_dynamic = 0.0; ///< Coulomb dynamic coefficient [-] (<= static)
     double radius           = 0.0; ///< particle contact radius: half the particle spacing [m]
+    ContactMethod method    = ContactMethod::penalty;
+    /// Kinematic only: a particle that touched the face stays tied to it (normal tension and
+    /// shear without limit; the friction coefficients are not used)
+    bool bonded = false;
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
@@ -93,6 +115,7 @@ namespace coupling
   {
     std::array<double, 3> tangential_force{{0, 0, 0}}; ///< [N]
     bool sliding = false;
+    bool tied    = false; ///< bonded interface: touched once, tied since
   };
 
   /// Penalty contact between one master surface and the rock particles.
@@ -140,6 +163,9 @@ namespace coupling
       double dissipated   = 0;        ///< friction work of this apply() [J]
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
+    /// apply() of ContactMethod::kinematic (kinematic_contact.cc).
+    std::size_t apply_kinematic(const ContactParticles &particles, const ContactSurface &surface, double dt,
+                                std::vector<double> &force_on_particles, std::vector<double> &force_on_nodes);
     void build_face_grid(const ContactSurface &surface);
     /// interior_edge_[f][e]: edge e of face f is shared with another face (computed again only
     /// when the face list changes).
@@ -159,6 +185,7 @@ namespace coupling
     /// order, so the lists end to end are in particle order). Only the few particles near the
     /// platen are stored, not a record per particle.
     std::vector<std::vector<Contact>> contacts_;
+    std::vector<double> node_weight_; ///< kinematic: per node, the sum of its contact weights
     // uniform grid of face bounding boxes
     std::array<double, 3> grid_origin_{};
     double grid_cell_ = 1.0;
