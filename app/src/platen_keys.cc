@@ -23,7 +23,7 @@ namespace app::keys
     s.add_enum("Contact method", pl.contact_method, "penalty|kinematic",
                {coupling::ContactMethod::penalty, coupling::ContactMethod::kinematic},
                "penalty spring (Contact stiffness scale) or kinematic constraint (no stiffness; "
-               "the predicted penetration removed each step)");
+               "the predicted penetration removed each step; for studies of the interface: see docs/validation.md)");
     s.check("Contact method", [&p]() {
       const coupling::PlatenParameters &pl = p.platens;
       if (pl.contact_method != coupling::ContactMethod::kinematic)
