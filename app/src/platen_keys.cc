@@ -53,6 +53,14 @@ namespace app::keys
         return "is for the specimen tests (UCS, BTS, CTCS); Test/Type = " + p.test + " (set it to 0)";
       return std::string();
     });
+    s.add<double>("Frame damping ratio", pl.frame_damping_ratio,
+                  "damping ratio zeta of the load frame's dashpot beside its spring, c = 2 zeta sqrt(k_frame m_platen) [-] (used with Frame stiffness > 0); at a steady rate it carries a constant force, which shifts the stroke, not the modulus",
+                  [](double v) { return v >= 0 && v <= 10; }, "must be in [0, 10] (1 = critical on the platen's mass)");
+    s.check("Frame damping ratio", [&pl]() {
+      return pl.frame_stiffness > 0 || pl.frame_damping_ratio == coupling::PlatenParameters().frame_damping_ratio
+               ? std::string()
+               : "is used with Platens/Frame stiffness > 0 only; leave it at its default (1)";
+    });
     s.add_choice("Shape", pl.shape, "flat|jaw", "BTS: flat platens or ISRM curved loading jaws (UCS/CTCS: flat only)",
                  [&p]() {
                    return p.platens.shape == "flat" || p.test == "BTS" ? std::string()

@@ -113,6 +113,11 @@ namespace app::keys
     s.add<double>("Closure stress", m.closure_stress,
                   "crack closure: compressive stress sigma_cc over which the modulus rises from E0 to E [Pa] (1/E_t = 1/E + (1/E0 - 1/E) exp(-p/sigma_cc))",
                   [](double v) { return v > 0 && v < 1e10; }, "must be in (0, 1e10) Pa");
+    s.check("Closure stress", [&m]() {
+      return m.closure_modulus_ratio < 1 || m.closure_stress == sph::MaterialParameters().closure_stress
+               ? ""
+               : "is used with Rock/Closure modulus ratio < 1 only; leave it at its default (2e7 Pa)";
+    });
     // rate-dependent strength, sph/rate_strength.h: the law `cosim diagnose` fits
     s.add<double>("Rate sensitivity", c.rate_sensitivity,
                   "strength gain per decade of the nominal strain rate A [-]: strengths x max(1 + A log10(rate / reference rate), 0.1); 0 = rate independent",
@@ -129,6 +134,11 @@ namespace app::keys
     s.add<double>("Reference strain rate", c.reference_strain_rate,
                   "rate-dependent strength: the strain rate at which the strengths are as given [1/s] (quasi-static; diagnose uses 1e-5)",
                   [](double v) { return v > 0 && v <= 100; }, "must be in (0, 100] 1/s");
+    s.check("Reference strain rate", [&c]() {
+      return c.rate_sensitivity > 0 || c.reference_strain_rate == coupling::RockCase().reference_strain_rate
+               ? ""
+               : "is used with Rock/Rate sensitivity > 0 only; leave it at its default (1e-5 1/s)";
+    });
   }
 
   void resolve_rock(coupling::CaseParameters &p, RockOverrides &o, const diagnose::MaterialTable &table,

@@ -265,7 +265,8 @@ namespace coupling
       // the velocity the frame's step gives, and the actuator with top_velocity
       if (!top_->is_rigid())
         throw InputError("Platens/Frame stiffness: drives a rigid platen; set Platens/Model = rigid or Frame stiffness = 0");
-      frame_ = std::make_unique<fem::LoadFrame>(prm_.platens.frame_stiffness, top_->total_mass());
+      frame_ = std::make_unique<fem::LoadFrame>(prm_.platens.frame_stiffness, top_->total_mass(),
+                                                prm_.platens.frame_damping_ratio);
       top_->set_loaded_face_velocity([this](double) { return frame_->platen_velocity(); });
     }
     else
@@ -503,11 +504,14 @@ namespace coupling
     const double pen      = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
     r.kinetic_energy      = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
     r.internal_energy     = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
-    if (frame_)
-      r.internal_energy += frame_->spring_energy();
     r.dissipated_energy   = e.dissipated() + contact_top_->friction_dissipation() +
                           contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
                           bottom_->damping_dissipation();
+    if (frame_) // the frame's spring and dashpot
+    {
+      r.internal_energy += frame_->spring_energy();
+      r.dissipated_energy += frame_->dissipated_energy();
+    }
     r.external_work = frame_work_ + pressure_work_;
     r.n_failed = n_failed_particles(*body_);
     return r;
@@ -623,7 +627,7 @@ namespace coupling
     if (frame_)
     {
       const auto fr = in.find("driver.frame");
-      if (fr == in.end() || fr->second.size() != 3)
+      if (fr == in.end() || fr->second.size() != frame_->state().size())
         throw InputError("checkpoint: no driver.frame array; not a checkpoint of a run with Platens/Frame stiffness");
       frame_->set_state(fr->second);
     }

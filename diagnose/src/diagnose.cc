@@ -313,7 +313,9 @@ namespace diagnose
       std::map<int, int> of_source;
       for (auto &d : all)
       {
-        if (d.kind == Datum::curve_point)
+        // a curve point shares its curve's condition; a curve without failure has no peak datum,
+        // and its first point (the same test, group, confinement, size and rate) names it
+        if (d.kind == Datum::curve_point && of_source.count(d.source))
         {
           d.condition = of_source.at(d.source);
           continue;

@@ -18,6 +18,17 @@ namespace
 {
   constexpr double E  = 97.07e9; // group M1, Table 3 [Pa]
   constexpr double nu = 0.28;
+  // Measured 0.63 % (the worst row, near 5 % of the peak; 0.2 % above 20 %); 1.5 % leaves room
+  // for the start-up wave, and linear elasticity misses the closed form by 45 %
+  constexpr double TOL_CLOSURE = 0.015;
+  // Measured 0.01 % (series modulus) and 0.03 % (gauge modulus): the secant is read over 40-60 %
+  // of the peak, where the frame's dashpot carries a constant force (no slope). 1 % leaves room
+  // for the start-up transient on other machines' round-off
+  constexpr double TOL_FRAME = 0.01;
+  constexpr double TOL_ENERGY = 0.01; // placeholder
+  // Measured 0.36 %: the faster run peaks higher by inertia alone (+0.41 % between 4 and 8 1/s
+  // without the effect, 283.72 and 284.88 MPa); 1 % is under a tenth of the 9 % effect
+  constexpr double TOL_RATE = 0.01;
 
   CaseParameters elastic_ucs()
   {
@@ -40,6 +51,10 @@ namespace
     p.rock.cohesion       = 32.99e6;
     p.rock.friction_angle = 63.68 * M_PI / 180.0;
     p.loading.end_strain  = 0.006;
+    // the peak is read on the history rows: 400 resolve it to 0.05 %, and the run stops just
+    // past it
+    p.output.n_history_rows   = 400;
+    p.loading.post_peak_drop  = 0.05;
     return p;
   }
 } // namespace
@@ -51,14 +66,14 @@ TEST(CoupledEffects, CrackClosureCurveFollowsTheClosedForm)
   CaseParameters p             = elastic_ucs();
   p.rock.closure_modulus_ratio = 0.4;
   p.rock.closure_stress        = 20e6;
-  p.loading.end_strain         = 2e-3;
+  p.loading.end_strain         = 1.5e-3; // 100 MPa: five closure stresses
   Keep rows;
   const Summary s = run_case(p, rows);
   double worst = 0, linear_worst = 0, top = 0;
   for (const auto &r : rows.rows)
     top = std::max(top, r.stress);
   for (const auto &r : rows.rows)
-    if (r.stress > 0.2 * top) // below: the platens' first touch and the start-up wave
+    if (r.stress > 0.05 * top) // below: the platens' first touch and the start-up wave
       {
         const double closed =
           sph::rock::crack_closure_strain(0.0, r.stress, E, 0.4 * E, 20e6);
@@ -67,7 +82,7 @@ TEST(CoupledEffects, CrackClosureCurveFollowsTheClosedForm)
       }
   std::printf("closure: peak stress %.1f MPa, worst gauge-strain error %.4f (linear E: %.4f)\n",
               top * 1e-6, worst, linear_worst);
-  EXPECT_GT(top, 100e6);
+  EXPECT_GT(top, 90e6);
   EXPECT_LT(worst, TOL_CLOSURE);
   EXPECT_GT(linear_worst, 5 * TOL_CLOSURE); // the toe is far outside the tolerance: the test sees it
 }
@@ -90,10 +105,13 @@ TEST(CoupledEffects, LoadFrameComplianceGivesTheSeriesModulus)
               "(series closed form %.4g GPa, ratio %.5f); gauge modulus %.4g / %.4g GPa\n",
               k_rock, s0.platen_modulus * 1e-9, s.platen_modulus * 1e-9, series * 1e-9,
               s.platen_modulus / series, s0.youngs_modulus * 1e-9, s.youngs_modulus * 1e-9);
+  std::printf("frame: energy balance error %.2e (without the frame %.2e)\n", s.energy_balance_error,
+              s0.energy_balance_error);
   EXPECT_NEAR(s.platen_modulus / series, 1.0, TOL_FRAME);
   // the rock itself sees the same load path: its gauge modulus does not change
   EXPECT_NEAR(s.youngs_modulus / s0.youngs_modulus, 1.0, TOL_FRAME);
-  EXPECT_LT(s.energy_balance_error, 0.05);
+  // the frame's spring and dashpot are in the energy account
+  EXPECT_LT(s.energy_balance_error, TOL_ENERGY);
   EXPECT_NEAR(extra(s, "frame_stiffness_N_per_m"), k_rock, 1e-6 * k_rock);
 }
 

@@ -71,6 +71,8 @@ namespace coupling
     /// actuator moves at the loading rate, the platen by that minus F / k_frame, and the
     /// displacement is read at the actuator; 0 = a rigid frame (the platen is the actuator)
     double frame_stiffness = 0.0;
+    /// Damping ratio zeta of the frame's dashpot, c = 2 zeta sqrt(k_frame m_platen) [-]
+    double frame_damping_ratio = 1.0;
   };
 
   /// Loading path. A strain rate of 0 derives the rate from the specimen's wave transit time.

@@ -13,6 +13,10 @@
 /// d(sigma) = E_t(sigma) d(eps) to second order in the increment and follows
 /// rock::crack_closure_strain. The plastic models return with the same scaled moduli.
 /// Stresses are tension-positive, as everywhere in the solver.
+///
+/// Energy: Body::energies() reports the elastic energy with the intact moduli, so the energy
+/// stored by closing cracks (the toe's extra strain) is counted with the plastic work; the total,
+/// and so the energy balance, is unchanged. The stable time step is the intact rock's (E_t <= E).
 
 #include <sph/parameters.h>
 #include <sph/rock_models.h>
