@@ -25,7 +25,8 @@ namespace
   // of the peak, where the frame's dashpot carries a constant force (no slope). 1 % leaves room
   // for the start-up transient on other machines' round-off
   constexpr double TOL_FRAME = 0.01;
-  constexpr double TOL_ENERGY = 0.01; // placeholder
+  // Measured 1e-4 with the frame (1.2e-3 without): 1 % would catch a frame energy left out (5 %)
+  constexpr double TOL_ENERGY = 0.01;
   // Measured 0.36 %: the faster run peaks higher by inertia alone (+0.41 % between 4 and 8 1/s
   // without the effect, 283.72 and 284.88 MPa); 1 % is under a tenth of the 9 % effect
   constexpr double TOL_RATE = 0.01;
@@ -39,6 +40,7 @@ namespace
     p.rock.poissons_ratio   = nu;
     p.sph.spacing           = 5e-3;
     p.loading.end_strain    = 1e-3;
+    p.loading.transit_times = 20; // half the default ramp: half the steps, still quasi-static
     p.output.n_history_rows = 100;
     return p;
   }
