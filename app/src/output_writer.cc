@@ -1,6 +1,8 @@
 #include <app/output_writer.h>
 #include <app/paths.h>
 
+#include <coupling/errors.h>
+
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -181,6 +184,81 @@ namespace app
         j[key] = value(v);
       }
     return document(j);
+  }
+
+  SummaryFile read_summary_json(const std::string &path)
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      throw coupling::InputError(path + ": cannot be read");
+    Json j;
+    try
+    {
+      j = Json::parse(in);
+    }
+    catch (const std::exception &e)
+    {
+      throw coupling::InputError(path + ": not JSON (" + std::string(e.what()) + ")");
+    }
+    if (!j.is_object() || !j.contains("schema_version") || j["schema_version"] != 1 || !j.contains("status") ||
+        !j["status"].is_string())
+      throw coupling::InputError(path + ": not a cosim summary.json of schema_version 1");
+    SummaryFile file;
+    file.status = j["status"].get<std::string>();
+    if (file.status != "completed")
+      return file;
+    // the inverse of summary_json: null numbers are NaN, units back to SI
+    auto number = [&](const char *key, double scale) {
+      const auto it = j.find(key);
+      if (it == j.end() || it->is_null())
+        return std::numeric_limits<double>::quiet_NaN();
+      if (!it->is_number())
+        throw coupling::InputError(path + ": '" + key + "' is not a number");
+      return it->get<double>() * scale;
+    };
+    auto text = [&](const char *key) {
+      const auto it = j.find(key);
+      return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
+    };
+    Summary s;
+    s.test                           = text("test");
+    s.n_particles                    = static_cast<std::size_t>(number("n_particles", 1));
+    s.n_steps                        = static_cast<std::size_t>(number("n_steps", 1));
+    s.wall_seconds                   = number("wall_seconds", 1);
+    s.peak_stress                    = number("peak_stress_MPa", 1e6);
+    s.peak_force                     = number("peak_force_kN", 1e3);
+    s.strain_at_peak                 = number("strain_at_peak", 1);
+    s.youngs_modulus                 = number("youngs_modulus_GPa", 1e9);
+    s.platen_modulus                 = number("platen_modulus_GPa", 1e9);
+    s.poissons_ratio                 = j.contains("poissons_ratio") && j["poissons_ratio"].is_number()
+                                         ? j["poissons_ratio"].get<double>()
+                                         : -1.0;
+    s.max_displacement               = number("max_displacement_mm", 1e-3);
+    s.max_kinetic_to_internal_energy = number("max_kinetic_to_internal_energy", 1);
+    s.max_force_imbalance            = number("max_force_imbalance", 1);
+    s.energy_balance_error           = number("energy_balance_error", 1);
+    s.max_exchange_imbalance         = number("max_exchange_imbalance", 1);
+    s.quasi_static                   = j.contains("quasi_static") && j["quasi_static"].is_boolean() &&
+                     j["quasi_static"].get<bool>();
+    s.true_area    = number("true_area_mm2", 1e-6);
+    s.lattice_area = number("lattice_area_mm2", 1e-6);
+    s.strain_rate  = number("strain_rate_per_s", 1);
+    s.time_step    = number("time_step_s", 1);
+    s.stop_reason  = text("stop_reason");
+    // the further results: every other key with a number (or null) value, in the file's order
+    static const std::set<std::string> fixed = {
+      "schema_version", "status", "cosim_version", "commit", "message", "test", "n_particles", "n_steps",
+      "wall_seconds", "peak_stress_MPa", "peak_force_kN", "strain_at_peak", "youngs_modulus_GPa",
+      "platen_modulus_GPa", "poissons_ratio", "max_displacement_mm", "max_kinetic_to_internal_energy",
+      "max_force_imbalance", "energy_balance_error", "max_exchange_imbalance", "quasi_static",
+      "true_area_mm2", "lattice_area_mm2", "strain_rate_per_s", "time_step_s", "stop_reason",
+      "last_good_state", "checkpoint", "restart"};
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (!fixed.count(it.key()) && (it->is_number() || it->is_null()))
+        s.extra.emplace_back(it.key(), it->is_null() ? std::numeric_limits<double>::quiet_NaN()
+                                                     : it->get<double>());
+    file.summary = s;
+    return file;
   }
 
   const std::vector<std::string> &history_columns()

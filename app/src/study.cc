@@ -12,13 +12,17 @@
 #include <app/run_command.h>
 #include <app/study.h>
 
+#include "study_jobs.h"
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace app
 {
@@ -54,6 +58,9 @@ namespace app
       std::optional<double> memory_limit; ///< --memory-limit GIB [bytes]
       bool force = false;
       bool quiet = false;
+      int jobs   = 1;             ///< --jobs N: runs side by side as child processes
+      bool print_commands = false; ///< --print-commands: one `cosim run` line per run, nothing run
+      bool collect        = false; ///< --collect: study.csv from runs already in OUTDIR
     };
 
     std::vector<std::string> split_list(const std::string &text)
@@ -69,7 +76,8 @@ namespace app
     const char *usage =
       "usage: cosim study CASE.prm --key \"Section/Key\" --values a,b,... [--vary "
       "\"Section/Key=a,b\"] "
-      "[--groups M1,M2|all] [-o OUTDIR] [--set \"Section/Key=value\"] [--force] [--quiet]";
+      "[--groups M1,M2|all] [-o OUTDIR] [--set \"Section/Key=value\"] [--jobs N | --print-commands | "
+      "--collect] [--force] [--quiet]";
 
     StudyOptions parse_options(const std::vector<std::string> &args)
     {
@@ -135,14 +143,30 @@ namespace app
           o.memory_limit = memory_limit_option(cursor, a);
         else if (a == "--force")
           o.force = true;
+        else if (a == "--jobs" || a == "-j")
+        {
+          const std::string text = cursor.value(a);
+          char *end              = nullptr;
+          errno                  = 0;
+          const long n           = std::strtol(text.c_str(), &end, 10);
+          if (text.empty() || *end != '\0' || errno != 0 || n < 1 || n > 1024)
+            throw InputError("cosim study: --jobs '" + diagnose::clip(text) +
+                             "' is not a number of runs from 1 to 1024");
+          o.jobs = static_cast<int>(n);
+        }
+        else if (a == "--print-commands")
+          o.print_commands = true;
+        else if (a == "--collect")
+          o.collect = true;
         else if (a == "--quiet" || a == "-q")
           o.quiet = true;
         else if (!a.empty() && a[0] == '-')
           throw InputError(
             "cosim study: unknown option '" + diagnose::clip(a) + "'" +
             did_you_mean(a, {"--output", "--set", "--key", "--values", "--vary", "--groups",
-                             "--force", "--quiet", "--help"}) +
-            "; accepted: -o, --set, --key, --values, --vary, --groups, --force, --quiet");
+                             "--jobs", "--print-commands", "--collect", "--force", "--quiet", "--help"}) +
+            "; accepted: -o, --set, --key, --values, --vary, --groups, --jobs, --print-commands, --collect, "
+            "--force, --quiet");
         else if (o.case_file.empty())
           o.case_file = a;
         else
@@ -158,6 +182,8 @@ namespace app
         throw InputError(
           std::string("cosim study: nothing to vary; give --key/--values, --vary or --groups; ") +
           usage);
+      if (int(o.jobs > 1) + int(o.print_commands) + int(o.collect) > 1)
+        throw InputError("cosim study: --jobs, --print-commands and --collect exclude each other; give one");
       for (const auto &d : o.vary)
         if (d.key == "Rock/Group" && !o.groups.empty())
           throw InputError(
@@ -224,11 +250,12 @@ namespace app
     /// One planned run.
     struct Run
     {
-      std::vector<std::string> values; ///< one per dimension
+      std::vector<std::string> values;    ///< one per dimension
+      std::vector<std::string> overrides; ///< the --set list of its `cosim run`
       std::string folder;
       CaseFile case_file;
       StudyReference reference;
-      int status = -1; ///< 0 done, 3 unstable, -1 not run
+      int status = -1; ///< 0 done, 3 unstable, 4 interrupted, 1 failed (see its .log), -1 not run
       Summary summary;
     };
 
@@ -275,174 +302,34 @@ namespace app
       args.insert(args.end(), columns.begin(), columns.end());
       return run_plot_script("plot_study.py", args, png.string());
     }
-  } // namespace
 
-  std::string study_help()
-  {
-    return std::string(usage) +
-           "\n"
-           "\n"
-           "Runs one case for every combination of the varied parameters (and rock groups), each "
-           "as\n"
-           "`cosim run` into a subfolder of OUTDIR (default results/study-<case stem>), one after "
-           "the\n"
-           "other, and writes:\n"
-           "  study.csv   one row per run: folder, the varied values, test, peak_stress_MPa,\n"
-           "              reference_MPa (Table 3 UCS / BTS of the group; CTCS: the Mohr-Coulomb "
-           "envelope\n"
-           "              of Table 3's measured c, phi where the group has them, else of the c, "
-           "phi in\n"
-           "              use), error_percent, envelope_MPa (closed form of the c, phi in use),\n"
-           "              youngs_modulus_GPa, platen_modulus_GPa, poissons_ratio, strain_at_peak,\n"
-           "              displacement_at_peak_mm, n_particles, n_steps, wall_seconds,\n"
-           "              max_kinetic_to_internal_energy, max_force_imbalance, quasi_static,\n"
-           "              stop_reason, status (ok / unstable), then the test's further results\n"
-           "              as summary.json names them (failure pattern: failure_onset_*,\n"
-           "              damaged_volume_fraction, crack_alignment; cutting forces)\n"
-           "  study.png   peak stress against the first varied key (one line per combination of "
-           "the\n"
-           "              others), and every run's curve (tools/plot_study.py)\n"
-           "  <run>/      each run's own result folder (summary.json, history.csv, ...)\n"
-           "\n"
-           "options:\n"
-           "  --key \"S/K\" --values a,b,...  one varied key and its values (repeatable pair)\n"
-           "  --vary \"S/K=a,b,...\"          the same in one argument (repeatable); all keys "
-           "combine\n"
-           "  --groups M1,M2,...|all        also vary Rock/Group (all: every group of the data "
-           "folder)\n"
-           "  -o, --output OUTDIR           result folder; never replaced without --force\n"
-           "  --set \"S/K=value\"             a fixed override for every run (repeatable)\n"
-           "  --force                       replace an existing OUTDIR written by cosim (only once the "
-           "study has ended)\n"
-           "  --memory-limit GIB            memory a run may use (default 90 % of the available memory)\n"
-           "  -q, --quiet                   no line per run\n"
-           "\n"
-           "Every combination is read and checked before the first run: a bad key or value stops "
-           "the\n"
-           "study with one line and nothing written. The study is written into a hidden sibling "
-           "folder\n"
-           "and renamed to OUTDIR at the end. Example (the paper's Fig. 13 on the BTS):\n"
-           "  cosim study cases/bts/bts.prm --key \"SPH/CSLH\" --values 1.05,1.2,1.3 -o "
-           "results/bts-cslh\n"
-           "\n"
-           "SIGINT / SIGTERM / SIGHUP: the run in progress stops with its checkpoint, the study "
-           "stops after it and\n"
-           "writes study.csv (status interrupted / not run) into OUTDIR (OUTDIR.interrupted when "
-           "OUTDIR exists).\n"
-           "\n"
-           "Exit status: 0 done, 2 bad input, 3 some runs unstable (marked in study.csv), 4 "
-           "interrupted, 1 other failure.\n";
-  }
-
-  int study_main(const std::vector<std::string> &args)
-  {
-    const StudyOptions options = parse_options(args);
-    const std::string stem     = fs::path(options.case_file).stem().string();
-    const CaseFile base        = read_case_file(options.case_file, options.overrides);
-    const MaterialTable table  = MaterialTable::read(data_directory_of(base));
-
-    std::vector<Dimension> dims; // series dimensions first, the x-axis last (fastest)
-    if (!options.groups.empty())
+    std::string status_word(const int status)
     {
-      Dimension g{"Rock/Group", {}};
-      if (options.groups == "all")
-        for (const auto &m : table.groups())
-          g.values.push_back(m.group);
-      else
-        g.values = split_list(options.groups);
-      if (g.values.empty())
-        throw InputError("cosim study: --groups has no names; e.g. M1,M2 or all");
-      for (const auto &v : g.values)
-        if (v.empty())
-          throw InputError("cosim study: --groups '" + diagnose::clip(options.groups) +
-                           "' has an empty name; e.g. M1,M2 or all");
-      dims.push_back(g);
-    }
-    for (std::size_t i = 1; i < options.vary.size(); ++i)
-      dims.push_back(options.vary[i]);
-    if (!options.vary.empty())
-      dims.push_back(options.vary.front());
-
-    // every combination, read and checked before anything is written
-    std::vector<Run> runs;
-    std::vector<std::size_t> index(dims.size(), 0);
-    for (bool more = true; more;)
-    {
-      Run run;
-      std::vector<std::string> overrides = options.overrides;
-      std::string folder;
-      for (std::size_t d = 0; d < dims.size(); ++d)
+      switch (status)
       {
-        run.values.push_back(dims[d].values[index[d]]);
-        overrides.push_back(dims[d].key + "=" + run.values.back());
-        folder += (folder.empty() ? "" : "_") + folder_part(dims[d].key, run.values.back());
-      }
-      char prefix[16];
-      std::snprintf(prefix, sizeof prefix, "%02zu-", runs.size() + 1);
-      run.folder    = prefix + folder;
-      run.case_file = read_case_file(options.case_file, overrides);
-      check_case_resources(run.case_file, options.memory_limit);
-      run.reference =
-        reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock_case.group));
-      runs.push_back(std::move(run));
-      more = false;
-      for (std::size_t d = dims.size(); d-- > 0;)
-      {
-        if (++index[d] < dims[d].values.size())
-        {
-          more = true;
-          break;
-        }
-        index[d] = 0;
+        case 0:
+          return "ok";
+        case 3:
+          return "unstable";
+        case 4:
+          return "interrupted";
+        case 1:
+          return "failed";
+        default:
+          return "not run";
       }
     }
-    const fs::path target = check_result_folder(
-      options.output.empty() ? "results/study-" + stem : options.output, options.force,
-      {fs::path(options.case_file), fs::path(data_directory_of(base))});
-    for (const auto &w : base.warnings)
-      std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
 
-    // Everything checked: write into the staging folder only. A signal stops the run in progress
-    // (its checkpoint kept in the study folder) and the study after it.
-    const StopSignals stop_signals;
-    ResultFolder folder(target, "study");
-    const fs::path &staging = folder.staging();
+    struct StudyTotals
     {
-      bool any_unstable         = false;
-      std::size_t interrupted_at = runs.size();
-      for (std::size_t i = 0; i < runs.size(); ++i)
-      {
-        Run &run = runs[i];
-        if (StopSignals::received() != 0)
-          break; // stopped between runs: the rest are not run
-        fs::path interrupted_folder;
-        run.status = run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary, "",
-                                     &interrupted_folder);
-        any_unstable = any_unstable || run.status == 3;
-        if (run.status == 4)
-        {
-          interrupted_at = i;
-          break;
-        }
-        if (!options.quiet)
-        {
-          std::string what;
-          for (std::size_t d = 0; d < dims.size(); ++d)
-            what += (what.empty() ? "" : ", ") + dims[d].key + "=" + run.values[d];
-          if (run.status == 0)
-            std::fprintf(stderr,
-                         "cosim study: [%zu/%zu] %s: peak %.2f MPa (%+.2f %% against %.2f, %s), "
-                         "%zu steps, %.1f s\n",
-                         i + 1, runs.size(), what.c_str(), run.summary.peak_stress * 1e-6,
-                         100 * (run.summary.peak_stress / run.reference.measured - 1),
-                         run.reference.measured * 1e-6, run.reference.description.c_str(),
-                         run.summary.n_steps, run.summary.wall_seconds);
-          else if (run.status == 3)
-            std::fprintf(stderr, "cosim study: [%zu/%zu] %s: unstable (see %s.failed)\n", i + 1,
-                         runs.size(), what.c_str(), diagnose::clip((target / run.folder).string()).c_str());
-        }
-      }
+      std::size_t n_ok = 0;
+      double mean_error = 0, max_error = 0; ///< |error| against the references [%]
+    };
 
+    /// study.csv and study.png of `runs` into `dir`.
+    StudyTotals write_study_table(const fs::path &dir, const std::vector<Dimension> &dims,
+                                  const std::vector<Run> &runs)
+    {
       // study.csv
       std::ostringstream csv;
       csv << "folder";
@@ -502,7 +389,7 @@ namespace app
           csv << ",," << number(run.reference.measured * 1e-6) << ",,"
               << number(run.reference.envelope * 1e-6) << "," << cell(run.reference.description)
               << ",,,,,,,,,,,,,,"
-              << (run.status == 3 ? "unstable" : run.status == 4 ? "interrupted" : "not run");
+              << status_word(run.status);
         for (const auto &c : extra_columns)
         {
           csv << ",";
@@ -512,15 +399,351 @@ namespace app
         }
         csv << "\n";
       }
-      write_text_file((staging / "study.csv").string(), csv.str());
+      {
+        // whole or not at all: a study.csv in OUTDIR is never half-written
+          const fs::path partial = dir / ".study.csv.partial";
+          write_text_file(partial.string(), csv.str());
+          fs::rename(partial, dir / "study.csv");
+        }
       std::vector<std::string> plot_columns;
       plot_columns.push_back(value_columns.back()); // x-axis
       plot_columns.insert(plot_columns.end(), value_columns.begin(), value_columns.end() - 1);
       const std::string why =
-        plot_study(staging / "study.csv", staging / "study.png", plot_columns);
+        plot_study(dir / "study.csv", dir / "study.png", plot_columns);
       if (!why.empty())
         std::fprintf(stderr, "cosim: warning: %s\n", why.c_str());
-      if (interrupted_at < runs.size() || StopSignals::received() != 0)
+      return {n_ok, n_ok > 0 ? sum_error / n_ok : 0.0, max_error};
+    }
+
+    /// A case file's text without its comment lines (the version and commit lines among them).
+    std::string without_comments(const std::string &text)
+    {
+      std::istringstream in(text);
+      std::string line, out;
+      while (std::getline(in, line))
+        if (trim(line).rfind('#', 0) != 0)
+          out += line + "\n";
+      return out;
+    }
+
+    /// --collect: study.csv and study.png from the runs already in OUTDIR (the commands of
+    /// --print-commands, run elsewhere). Each run's used_parameters.prm must be the one this study
+    /// plans for its folder.
+    int collect_study(const std::string &output, const std::vector<Dimension> &dims, std::vector<Run> &runs,
+                      const bool quiet)
+    {
+      const fs::path dir = fs::absolute(output).lexically_normal();
+      std::error_code ec;
+      if (!fs::is_directory(dir, ec))
+        throw InputError("cosim study --collect: " + diagnose::clip(dir.string()) +
+                         " is not a folder; run the commands of --print-commands into it first");
+      std::size_t n_unstable = 0, n_unfinished = 0;
+      for (auto &run : runs)
+      {
+        const fs::path done = dir / run.folder;
+        fs::path failed     = done;
+        failed += ".failed";
+        const fs::path folder = fs::exists(done / "summary.json", ec) ? done : failed;
+        if (!fs::exists(folder / "summary.json", ec))
+        {
+          run.status = -1;
+          ++n_unfinished;
+          continue;
+        }
+        std::ifstream in(folder / "used_parameters.prm", std::ios::binary);
+        std::ostringstream used;
+        used << in.rdbuf();
+        if (without_comments(used.str()) != without_comments(run.case_file.used_parameters))
+          throw InputError("cosim study --collect: " + diagnose::clip((folder / "used_parameters.prm").string()) +
+                           " is not the case this study plans for " + run.folder +
+                           " (other parameters, case file or options)");
+        const SummaryFile file = read_summary_json((folder / "summary.json").string());
+        if (file.summary)
+          run.status = 0, run.summary = *file.summary;
+        else if (file.status == "unstable")
+          run.status = 3, ++n_unstable;
+        else
+          run.status = file.status == "interrupted" ? 4 : 1, ++n_unfinished;
+      }
+      const StudyTotals totals = write_study_table(dir, dims, runs);
+      if (!quiet)
+        std::fprintf(stderr,
+                     "cosim study: collected %zu of %zu runs (%zu unstable, %zu not finished), mean |error| "
+                     "%.2f %%, max |error| %.2f %% -> %s\n",
+                     totals.n_ok, runs.size(), n_unstable, n_unfinished, totals.mean_error, totals.max_error,
+                     diagnose::clip((dir / "study.csv").string()).c_str());
+      return n_unfinished > 0 ? 4 : n_unstable > 0 ? 3 : 0;
+    }
+
+    /// The `cosim run` of one planned run (absolute paths: a batch job may start elsewhere).
+    RunCommand run_command(const StudyOptions &options, const Run &run, const fs::path &folder,
+                           const std::optional<double> &memory_limit)
+    {
+      RunCommand c;
+      c.folder = folder;
+      c.argv   = {executable_path().string(), "run", fs::absolute(options.case_file).lexically_normal().string()};
+      for (const auto &o : run.overrides)
+        c.argv.insert(c.argv.end(), {"--set", o});
+      c.argv.insert(c.argv.end(), {"-o", folder.string(), "--quiet"});
+      if (memory_limit)
+      {
+        char gib[32];
+        std::snprintf(gib, sizeof gib, "%.6g", *memory_limit / (1024.0 * 1024.0 * 1024.0));
+        c.argv.insert(c.argv.end(), {"--memory-limit", gib});
+      }
+      return c;
+    }
+  } // namespace
+
+  std::string study_help()
+  {
+    return std::string(usage) +
+           "\n"
+           "\n"
+           "Runs one case for every combination of the varied parameters (and rock groups), each "
+           "as\n"
+           "`cosim run` into a subfolder of OUTDIR (default results/study-<case stem>), one after "
+           "the\n"
+           "other, and writes:\n"
+           "  study.csv   one row per run: folder, the varied values, test, peak_stress_MPa,\n"
+           "              reference_MPa (Table 3 UCS / BTS of the group; CTCS: the Mohr-Coulomb "
+           "envelope\n"
+           "              of Table 3's measured c, phi where the group has them, else of the c, "
+           "phi in\n"
+           "              use), error_percent, envelope_MPa (closed form of the c, phi in use),\n"
+           "              youngs_modulus_GPa, platen_modulus_GPa, poissons_ratio, strain_at_peak,\n"
+           "              displacement_at_peak_mm, n_particles, n_steps, wall_seconds,\n"
+           "              max_kinetic_to_internal_energy, max_force_imbalance, quasi_static,\n"
+           "              stop_reason, status (ok / unstable), then the test's further results\n"
+           "              as summary.json names them (failure pattern: failure_onset_*,\n"
+           "              damaged_volume_fraction, crack_alignment; cutting forces)\n"
+           "  study.png   peak stress against the first varied key (one line per combination of "
+           "the\n"
+           "              others), and every run's curve (tools/plot_study.py)\n"
+           "  <run>/      each run's own result folder (summary.json, history.csv, ...)\n"
+           "\n"
+           "options:\n"
+           "  --key \"S/K\" --values a,b,...  one varied key and its values (repeatable pair)\n"
+           "  --vary \"S/K=a,b,...\"          the same in one argument (repeatable); all keys "
+           "combine\n"
+           "  --groups M1,M2,...|all        also vary Rock/Group (all: every group of the data "
+           "folder)\n"
+           "  -o, --output OUTDIR           result folder; never replaced without --force\n"
+           "  --set \"S/K=value\"             a fixed override for every run (repeatable)\n"
+           "  --force                       replace an existing OUTDIR written by cosim (only once the "
+           "study has ended)\n"
+           "  --memory-limit GIB            memory a run may use (default 90 % of the available memory)\n"
+           "  -j, --jobs N                  run N cases side by side, each a `cosim run` child process\n"
+           "                                with 1/N of the cores (OMP_NUM_THREADS) and of the memory\n"
+           "  --print-commands              print one `cosim run` command per case (absolute paths,\n"
+           "                                results into OUTDIR/<run>) and run nothing: for a batch\n"
+           "                                system (cases/studies/slurm/); then --collect\n"
+           "  --collect                     write study.csv and study.png into OUTDIR from the runs\n"
+           "                                found there (each checked against the case it should be);\n"
+           "                                exit 4 while some are missing\n"
+           "  -q, --quiet                   no line per run\n"
+           "\n"
+           "Every combination is read and checked before the first run: a bad key or value stops "
+           "the\n"
+           "study with one line and nothing written. The study is written into a hidden sibling "
+           "folder\n"
+           "and renamed to OUTDIR at the end. Example (the paper's Fig. 13 on the BTS):\n"
+           "  cosim study cases/bts/bts.prm --key \"SPH/CSLH\" --values 1.05,1.2,1.3 -o "
+           "results/bts-cslh\n"
+           "\n"
+           "SIGINT / SIGTERM / SIGHUP: the run in progress stops with its checkpoint, the study "
+           "stops after it and\n"
+           "writes study.csv (status interrupted / not run) into OUTDIR (OUTDIR.interrupted when "
+           "OUTDIR exists).\n"
+           "\n"
+           "Exit status: 0 done, 2 bad input, 3 some runs unstable (marked in study.csv), 4 "
+           "interrupted, 1 other failure.\n";
+  }
+
+  int study_main(const std::vector<std::string> &args)
+  {
+    const StudyOptions options = parse_options(args);
+    const std::string stem     = fs::path(options.case_file).stem().string();
+    const CaseFile base        = read_case_file(options.case_file, options.overrides);
+    const MaterialTable table  = MaterialTable::read(data_directory_of(base));
+
+    std::vector<Dimension> dims; // series dimensions first, the x-axis last (fastest)
+    if (!options.groups.empty())
+    {
+      Dimension g{"Rock/Group", {}};
+      if (options.groups == "all")
+        for (const auto &m : table.groups())
+          g.values.push_back(m.group);
+      else
+        g.values = split_list(options.groups);
+      if (g.values.empty())
+        throw InputError("cosim study: --groups has no names; e.g. M1,M2 or all");
+      for (const auto &v : g.values)
+        if (v.empty())
+          throw InputError("cosim study: --groups '" + diagnose::clip(options.groups) +
+                           "' has an empty name; e.g. M1,M2 or all");
+      dims.push_back(g);
+    }
+    for (std::size_t i = 1; i < options.vary.size(); ++i)
+      dims.push_back(options.vary[i]);
+    if (!options.vary.empty())
+      dims.push_back(options.vary.front());
+
+    // side by side, the runs share the memory: each may use its share of the limit
+    std::optional<double> run_limit = options.memory_limit;
+    if (options.jobs > 1)
+    {
+      if (!run_limit)
+        if (const auto available = available_memory())
+          run_limit = 0.9 * *available;
+      if (run_limit)
+        *run_limit /= options.jobs;
+    }
+
+    // every combination, read and checked before anything is written
+    std::vector<Run> runs;
+    std::vector<std::size_t> index(dims.size(), 0);
+    for (bool more = true; more;)
+    {
+      Run run;
+      std::vector<std::string> overrides = options.overrides;
+      std::string folder;
+      for (std::size_t d = 0; d < dims.size(); ++d)
+      {
+        run.values.push_back(dims[d].values[index[d]]);
+        overrides.push_back(dims[d].key + "=" + run.values.back());
+        folder += (folder.empty() ? "" : "_") + folder_part(dims[d].key, run.values.back());
+      }
+      char prefix[16];
+      std::snprintf(prefix, sizeof prefix, "%02zu-", runs.size() + 1);
+      run.folder    = prefix + folder;
+      run.overrides = overrides;
+      run.case_file = read_case_file(options.case_file, overrides);
+      check_case_resources(run.case_file, run_limit);
+      run.reference =
+        reference_of(run.case_file.parameters, table.lookup(run.case_file.parameters.rock_case.group));
+      runs.push_back(std::move(run));
+      more = false;
+      for (std::size_t d = dims.size(); d-- > 0;)
+      {
+        if (++index[d] < dims[d].values.size())
+        {
+          more = true;
+          break;
+        }
+        index[d] = 0;
+      }
+    }
+    const std::string output = options.output.empty() ? "results/study-" + stem : options.output;
+    for (const auto &w : base.warnings)
+      std::fprintf(stderr, "cosim: warning: %s\n", w.c_str());
+
+    if (options.print_commands)
+    {
+      // one line per run for a batch system; nothing is run or written
+      const fs::path outdir = fs::absolute(output).lexically_normal();
+      for (const auto &run : runs)
+        std::printf("%s\n", command_line(run_command(options, run, outdir / run.folder, {}).argv).c_str());
+      return 0;
+    }
+    if (options.collect)
+      return collect_study(output, dims, runs, options.quiet);
+
+    const fs::path target = check_result_folder(output, options.force,
+                                                {fs::path(options.case_file), fs::path(data_directory_of(base))});
+
+    // Everything checked: write into the staging folder only. A signal stops the run in progress
+    // (its checkpoint kept in the study folder) and the study after it.
+    const StopSignals stop_signals;
+    ResultFolder folder(target, "study");
+    const fs::path &staging = folder.staging();
+    auto describe = [&](const Run &run) {
+      std::string what;
+      for (std::size_t d = 0; d < dims.size(); ++d)
+        what += (what.empty() ? "" : ", ") + dims[d].key + "=" + run.values[d];
+      return what;
+    };
+    auto report = [&](const std::size_t i) {
+      const Run &run = runs[i];
+      if (options.quiet)
+        return;
+      if (run.status == 0)
+        std::fprintf(stderr,
+                     "cosim study: [%zu/%zu] %s: peak %.2f MPa (%+.2f %% against %.2f, %s), "
+                     "%zu steps, %.1f s\n",
+                     i + 1, runs.size(), describe(run).c_str(), run.summary.peak_stress * 1e-6,
+                     100 * (run.summary.peak_stress / run.reference.measured - 1),
+                     run.reference.measured * 1e-6, run.reference.description.c_str(),
+                     run.summary.n_steps, run.summary.wall_seconds);
+      else if (run.status == 3)
+        std::fprintf(stderr, "cosim study: [%zu/%zu] %s: unstable (see %s.failed)\n", i + 1, runs.size(),
+                     describe(run).c_str(), diagnose::clip((target / run.folder).string()).c_str());
+      else if (run.status == 1)
+        std::fprintf(stderr, "cosim study: [%zu/%zu] %s: failed (see %s.log)\n", i + 1, runs.size(),
+                     describe(run).c_str(), diagnose::clip((target / run.folder).string()).c_str());
+    };
+    {
+      bool any_unstable = false, any_failed = false;
+      std::vector<std::size_t> interrupted; // runs stopped with a checkpoint
+      if (options.jobs == 1)
+        for (std::size_t i = 0; i < runs.size(); ++i)
+        {
+          Run &run = runs[i];
+          if (StopSignals::received() != 0)
+            break; // stopped between runs: the rest are not run
+          fs::path interrupted_folder;
+          run.status = run_into_folder(run.case_file, staging / run.folder, false, true, &run.summary, "",
+                                       &interrupted_folder);
+          if (run.status == 4)
+          {
+            interrupted.push_back(i);
+            break;
+          }
+          report(i);
+        }
+      else
+      {
+        // side by side: each run a `cosim run` child with its share of the cores, its summary
+        // read back from its folder
+        std::vector<RunCommand> commands;
+        for (const auto &run : runs)
+          commands.push_back(run_command(options, run, staging / run.folder, run_limit));
+        const int cores   = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        const int threads = std::max(1, cores / options.jobs);
+        run_side_by_side(commands, options.jobs, threads, [&](const std::size_t i, const int status) {
+          Run &run                = runs[i];
+          const fs::path run_path = staging / run.folder;
+          const fs::path log      = run_path.string() + ".log";
+          run.status              = status == 0 || status == 3 || status == 4 ? status : 1;
+          if (status == 0)
+          {
+            try
+            {
+              const SummaryFile file = read_summary_json((run_path / "summary.json").string());
+              if (file.summary)
+                run.summary = *file.summary;
+              else
+                run.status = 1;
+            }
+            catch (const InputError &)
+            {
+              run.status = 1;
+            }
+          }
+          if (run.status == 4)
+            interrupted.push_back(i);
+          std::error_code ignored;
+          if (run.status != 1)
+            fs::remove(log, ignored); // a failed run keeps its log beside its folder
+          report(i);
+        });
+        std::sort(interrupted.begin(), interrupted.end());
+      }
+      for (const auto &run : runs)
+        any_unstable = any_unstable || run.status == 3, any_failed = any_failed || run.status == 1;
+
+      const StudyTotals totals = write_study_table(staging, dims, runs);
+      if (!interrupted.empty() || StopSignals::received() != 0)
       {
         // never replaces a result: OUTDIR when free, else OUTDIR.interrupted
         std::error_code ec;
@@ -534,19 +757,22 @@ namespace app
         for (const auto &run : runs)
           n_done += run.status == 0 || run.status == 3;
         std::string how;
-        if (interrupted_at < runs.size())
-          how = "; continue run " + runs[interrupted_at].folder + " with: cosim run --restart " +
-                shell_word((published / runs[interrupted_at].folder).string());
+        if (!interrupted.empty())
+          how = "; continue run " + runs[interrupted.front()].folder + " with: cosim run --restart " +
+                shell_word((published / runs[interrupted.front()].folder).string()) +
+                (interrupted.size() > 1 ? " (and likewise the other " + std::to_string(interrupted.size() - 1) +
+                                            " interrupted runs)"
+                                        : std::string());
         std::fprintf(stderr, "cosim study: interrupted by a signal after %zu of %zu runs; study.csv and the runs "
                      "are in %s%s\n", n_done, runs.size(), diagnose::clip(published.string()).c_str(), how.c_str());
         return 4;
       }
       const fs::path published = folder.publish(ResultStatus::complete, options.force);
-      if (!options.quiet && n_ok > 0)
+      if (!options.quiet && totals.n_ok > 0)
         std::fprintf(stderr,
                      "cosim study: %zu runs, mean |error| %.2f %%, max |error| %.2f %% -> %s\n",
-                     runs.size(), sum_error / n_ok, max_error, diagnose::clip(published.string()).c_str());
-      return any_unstable ? 3 : 0;
+                     runs.size(), totals.mean_error, totals.max_error, diagnose::clip(published.string()).c_str());
+      return any_failed ? 1 : any_unstable ? 3 : 0;
     }
   }
 } // namespace app

@@ -108,6 +108,118 @@ TEST(Study, KeyValuesSweepDoublesTheStressWithTheStrain)
               0.02 * table.number(0, "youngs_modulus_GPa"));
 }
 
+namespace
+{
+  /// study.csv's rows without the wall_seconds column (the only one that differs between runs of
+  /// the same case).
+  std::vector<std::string> rows_without_wall_time(const fs::path &csv)
+  {
+    const auto table = diagnose::CsvTable::read(csv.string());
+    std::vector<std::string> rows;
+    for (std::size_t i = 0; i < table.n_rows(); ++i)
+    {
+      std::string row;
+      for (const auto &c : table.columns())
+        if (c != "wall_seconds")
+          row += table.text(i, c) + ",";
+      rows.push_back(row);
+    }
+    return rows;
+  }
+} // namespace
+
+TEST(Study, JobsSideBySideGiveTheSequentialTable)
+{
+  Sandbox box;
+  const std::vector<std::string> sweep = {"study", ucs_case, "--key", "Loading/End strain", "--values",
+                                          "0.0005,0.001"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = sweep;
+    args.insert(args.end(), more.begin(), more.end());
+    return tiny(args);
+  };
+  ASSERT_EQ(run_cosim(box, with({"-o", "one"})).status, 0);
+  const Result r = run_cosim(box, with({"-o", "two", "--jobs", "2"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  // each run is the same deterministic `cosim run`, in a child process: the same numbers to the
+  // last printed digit, in the planned order
+  EXPECT_EQ(rows_without_wall_time(box.dir() / "two" / "study.csv"),
+            rows_without_wall_time(box.dir() / "one" / "study.csv"));
+  for (const auto &entry : fs::directory_iterator(box.dir() / "two"))
+    EXPECT_NE(entry.path().extension(), ".log") << "a finished run leaves no log: " << entry.path();
+}
+
+TEST(Study, PrintedCommandsRunElsewhereAndCollect)
+{
+  Sandbox box;
+  const std::vector<std::string> sweep = tiny({"study", ucs_case, "--key", "Loading/End strain", "--values",
+                                               "0.0005,0.001", "-o", "batch"});
+  auto with = [&](const char *option) {
+    std::vector<std::string> args = sweep;
+    args.push_back(option);
+    return args;
+  };
+  const Result printed = run_cosim(box, with("--print-commands"));
+  ASSERT_EQ(printed.status, 0) << printed.err;
+  EXPECT_FALSE(fs::exists(box.dir() / "batch")) << "--print-commands runs and writes nothing";
+  std::vector<std::string> lines;
+  std::istringstream in(printed.out);
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u) << printed.out;
+  EXPECT_NE(lines[0].find(" run "), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find("Loading/End strain=0.0005"), std::string::npos) << lines[0];
+
+  // before any run there is no OUTDIR to collect from: bad input
+  EXPECT_EQ(run_cosim(box, with("--collect")).status, 2) << "OUTDIR does not exist yet";
+  // the first command only, as a batch system would run it
+  ASSERT_EQ(std::system(("cd " + shell_quote(box.dir().string()) + " && " + lines[0] + " 2>/dev/null").c_str()), 0);
+  Result collected = run_cosim(box, with("--collect"));
+  EXPECT_EQ(collected.status, 4) << "one run still missing: " << collected.err;
+  auto table = diagnose::CsvTable::read((box.dir() / "batch" / "study.csv").string());
+  ASSERT_EQ(table.n_rows(), 2u);
+  EXPECT_EQ(table.text(0, "status"), "ok");
+  EXPECT_EQ(table.text(1, "status"), "not run");
+  ASSERT_EQ(std::system(("cd " + shell_quote(box.dir().string()) + " && " + lines[1] + " 2>/dev/null").c_str()), 0);
+  collected = run_cosim(box, with("--collect"));
+  ASSERT_EQ(collected.status, 0) << collected.err;
+  table = diagnose::CsvTable::read((box.dir() / "batch" / "study.csv").string());
+  ASSERT_EQ(table.n_rows(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    EXPECT_EQ(table.text(i, "status"), "ok");
+    // the row is the run's summary.json, printed to 6 digits
+    const std::string summary = read_file(box.dir() / "batch" / table.text(i, "folder") / "summary.json");
+    const auto at             = summary.find("\"peak_stress_MPa\": ");
+    ASSERT_NE(at, std::string::npos);
+    const double peak = std::stod(summary.substr(at + 19));
+    EXPECT_NEAR(table.number(i, "peak_stress_MPa"), peak, 1e-5 * peak);
+  }
+  // run folders of the same names made with other parameters are not taken for this study's
+  std::vector<std::string> other = with("--collect");
+  other.insert(other.end(), {"--set", "SPH/CSLH=1.3"});
+  const Result mismatch = run_cosim(box, other);
+  EXPECT_EQ(mismatch.status, 2) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("is not the case this study plans"), std::string::npos) << mismatch.err;
+}
+
+TEST(Study, SlurmExampleRunsAsWrittenWithBash)
+{
+  // cases/studies/slurm/study.sbatch outside Slurm: the same script, its runs as plain processes
+  Sandbox box;
+  std::string command = "cd " + shell_quote(box.dir().string()) + " && COSIM=" + shell_quote(cosim_binary()) +
+                        " JOBS=2 bash " + shell_quote(source("cases/studies/slurm/study.sbatch")) + " out";
+  for (const auto &a : tiny({ucs_case, "--key", "Loading/End strain", "--values", "0.0005,0.001"}))
+    command += " " + shell_quote(a);
+  ASSERT_EQ(std::system((command + " 2>/dev/null").c_str()), 0) << command;
+  const auto table = diagnose::CsvTable::read((box.dir() / "out" / "study.csv").string());
+  ASSERT_EQ(table.n_rows(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+    EXPECT_EQ(table.text(i, "status"), "ok");
+  // twice the end strain, twice the stress (as KeyValuesSweepDoublesTheStressWithTheStrain)
+  EXPECT_NEAR(table.number(1, "peak_stress_MPa") / table.number(0, "peak_stress_MPa"), 2.0, 0.05);
+}
+
 TEST(Study, BadInputWritesNothing)
 {
   Sandbox box;
@@ -123,6 +235,10 @@ TEST(Study, BadInputWritesNothing)
   expect_bad_input(box, {"study", ucs_case, "--groups", "M1,M99"}, "M99");
   expect_bad_input(box, {"study", "--groups", "M1"}, "no case file");
   expect_bad_input(box, {"study", ucs_case, "--groups", "M1", "--frobnicate"}, "--frobnicate");
+  expect_bad_input(box, {"study", ucs_case, "--groups", "M1", "--jobs", "0"}, "--jobs");
+  expect_bad_input(box, {"study", ucs_case, "--groups", "M1", "--jobs", "two"}, "--jobs");
+  expect_bad_input(box, {"study", ucs_case, "--groups", "M1", "--jobs", "2", "--collect"}, "exclude");
+  expect_bad_input(box, {"study", ucs_case, "--groups", "M1", "--collect", "-o", "nowhere"}, "not a folder");
 }
 
 TEST(Study, HelpNamesTheOptions)
@@ -131,7 +247,8 @@ TEST(Study, HelpNamesTheOptions)
   const Result r = run_cosim(box, {"study", "--help"});
   EXPECT_EQ(r.status, 0);
   for (const auto *o :
-       {"usage: cosim study", "--key", "--values", "--vary", "--groups", "study.csv", "study.png"})
+       {"usage: cosim study", "--key", "--values", "--vary", "--groups", "--jobs", "--print-commands",
+        "--collect", "study.csv", "study.png"})
     EXPECT_NE(r.out.find(o), std::string::npos) << o;
   EXPECT_NE(run_cosim(box, {"--help"}).out.find("study"), std::string::npos);
 }

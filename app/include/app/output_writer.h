@@ -6,6 +6,7 @@
 #include <coupling/run_output.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,17 @@ namespace app
 
   /// summary.json text of a completed run.
   std::string summary_json(const coupling::Summary &summary);
+
+  /// What a summary.json file says: its status ("completed", "unstable", ...) and, for a
+  /// completed run, the Summary it was written from (SI units again; the further results in the
+  /// file's order). InputError (one line naming the file) when it cannot be read or is not a
+  /// summary.json of this schema.
+  struct SummaryFile
+  {
+    std::string status;
+    std::optional<coupling::Summary> summary;
+  };
+  SummaryFile read_summary_json(const std::string &path);
 
   /// Column names of history.csv, in order.
   const std::vector<std::string> &history_columns();
