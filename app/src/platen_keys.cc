@@ -72,6 +72,27 @@ namespace app::keys
     s.add<double>("Contact stiffness scale", pl.contact_stiffness_scale,
                   "penalty stiffness / its stability bound at the rock step [-]; the step shrinks by sqrt(1 + s); 0.5 for stress waves",
                   [](double v) { return v > 0 && v <= 1; }, "must be in (0, 1]");
+    s.add<double>("Frame stiffness", pl.frame_stiffness,
+                  "load frame in series with the top platen [N/m]: the actuator moves at the loading rate, the platen by that minus F / k_frame, and the displacement is read at the actuator; 0 = a rigid frame",
+                  [](double v) { return v >= 0 && v < 1e15; }, "must be in [0, 1e15) N/m (0 = a rigid frame; laboratory frames: about 1e8-1e10)");
+    s.check("Frame stiffness", [&p]() {
+      const coupling::PlatenParameters &pl = p.platens;
+      if (pl.frame_stiffness == 0)
+        return std::string();
+      if (pl.steel.model != fem::SteelModel::rigid)
+        return std::string("drives a rigid platen; set Platens/Model = rigid or Frame stiffness = 0");
+      if (p.test != "UCS" && p.test != "BTS" && p.test != "CTCS")
+        return "is for the specimen tests (UCS, BTS, CTCS); Test/Type = " + p.test + " (set it to 0)";
+      return std::string();
+    });
+    s.add<double>("Frame damping ratio", pl.frame_damping_ratio,
+                  "damping ratio zeta of the load frame's dashpot beside its spring, c = 2 zeta sqrt(k_frame m_platen) [-] (used with Frame stiffness > 0); at a steady rate it carries a constant force, which shifts the stroke, not the modulus",
+                  [](double v) { return v >= 0 && v <= 10; }, "must be in [0, 10] (1 = critical on the platen's mass)");
+    s.check("Frame damping ratio", [&pl]() {
+      return pl.frame_stiffness > 0 || pl.frame_damping_ratio == coupling::PlatenParameters().frame_damping_ratio
+               ? std::string()
+               : "is used with Platens/Frame stiffness > 0 only; leave it at its default (1)";
+    });
     s.add_choice("Shape", pl.shape, "flat|jaw", "BTS: flat platens or ISRM curved loading jaws (UCS/CTCS: flat only)",
                  [&p]() {
                    return p.platens.shape == "flat" || p.test == "BTS" ? std::string()

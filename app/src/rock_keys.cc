@@ -106,6 +106,39 @@ namespace app::keys
     });
     s.add<int>("Scatter seed", c.scatter_seed, "seed of the strength scatter: the same seed, the same rock",
                [](int v) { return v >= 0; }, "must be >= 0");
+    // crack closure (toe) elasticity, sph/crack_closure.h: the law `cosim diagnose` fits
+    s.add<double>("Closure modulus ratio", m.closure_modulus_ratio,
+                  "crack closure: Young's modulus at zero compressive stress E0 / E [-]; 1 = no crack closure (linear elastic)",
+                  [](double v) { return v > 0 && v <= 1; }, "must be in (0, 1] (1 = no crack closure)");
+    s.add<double>("Closure stress", m.closure_stress,
+                  "crack closure: compressive stress sigma_cc over which the modulus rises from E0 to E [Pa] (1/E_t = 1/E + (1/E0 - 1/E) exp(-p/sigma_cc))",
+                  [](double v) { return v > 0 && v < 1e10; }, "must be in (0, 1e10) Pa");
+    s.check("Closure stress", [&m]() {
+      return m.closure_modulus_ratio < 1 || m.closure_stress == sph::MaterialParameters().closure_stress
+               ? ""
+               : "is used with Rock/Closure modulus ratio < 1 only; leave it at its default (2e7 Pa)";
+    });
+    // rate-dependent strength, sph/rate_strength.h: the law `cosim diagnose` fits
+    s.add<double>("Rate sensitivity", c.rate_sensitivity,
+                  "strength gain per decade of the nominal strain rate A [-]: strengths x max(1 + A log10(rate / reference rate), 0.1); 0 = rate independent",
+                  [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (rock: about 0.02-0.1; 0 = rate independent)");
+    s.check("Rate sensitivity", [&m, &c, &p]() {
+      if (c.rate_sensitivity == 0)
+        return std::string();
+      if (m.model == sph::RockModel::elastic)
+        return std::string("scales strength, which Rock/Model = elastic does not have; set it to 0 or choose a plastic model");
+      if (p.test != "UCS" && p.test != "BTS" && p.test != "CTCS")
+        return "needs the nominal strain rate of a UCS, BTS or CTCS test; Test/Type = " + p.test + " has none (set it to 0)";
+      return std::string();
+    });
+    s.add<double>("Reference strain rate", c.reference_strain_rate,
+                  "rate-dependent strength: the strain rate at which the strengths are as given [1/s] (quasi-static; diagnose uses 1e-5)",
+                  [](double v) { return v > 0 && v <= 100; }, "must be in (0, 100] 1/s");
+    s.check("Reference strain rate", [&c]() {
+      return c.rate_sensitivity > 0 || c.reference_strain_rate == coupling::RockCase().reference_strain_rate
+               ? ""
+               : "is used with Rock/Rate sensitivity > 0 only; leave it at its default (1e-5 1/s)";
+    });
   }
 
   void resolve_rock(coupling::CaseParameters &p, RockOverrides &o, const diagnose::MaterialTable &table,

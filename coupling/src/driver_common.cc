@@ -4,6 +4,7 @@
 
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/rate_strength.h>
 #include <sph/strength_scatter.h>
 
 #include <Eigen/Dense>
@@ -75,12 +76,20 @@ namespace coupling
     return p;
   }
 
-  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice)
+  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice,
+                                               const double strain_rate)
   {
+    const RockCase &rc = p.rock_case;
+    if (rc.rate_sensitivity != 0 && !(strain_rate > 0))
+      throw InputError("Rock/Rate sensitivity: " + p.test +
+                       " has no nominal strain rate to scale the strength with; set it to 0 (rate-dependent "
+                       "strength is for UCS, BTS and CTCS)");
+    const sph::MaterialParameters material =
+      sph::at_strain_rate(p.rock, strain_rate, rc.rate_sensitivity, rc.reference_strain_rate);
     std::unique_ptr<sph::Body<3>> body;
     try
     {
-      body = std::make_unique<sph::Body<3>>(sph_numerics(p.sph), p.rock, lattice.positions, lattice.volumes);
+      body = std::make_unique<sph::Body<3>>(sph_numerics(p.sph), material, lattice.positions, lattice.volumes);
     }
     catch (const std::invalid_argument &e)
     {

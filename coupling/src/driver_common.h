@@ -39,8 +39,12 @@ namespace coupling
 
   /// The rock body of case `p` on `lattice` (of spacing SPH/Particle spacing): the case's
   /// numerics (sph_numerics) and rock, and for a heterogeneous rock (Rock/Strength scatter > 0)
-  /// every particle's Weibull strength factor. InputError for what the SPH body refuses.
-  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice);
+  /// every particle's Weibull strength factor. With a rate-sensitive rock
+  /// (Rock/Rate sensitivity > 0) the strengths are those at the nominal strain rate
+  /// `strain_rate` [1/s] (sph/rate_strength.h); a driver without one passes 0, which such a rock
+  /// refuses. InputError for what the SPH body refuses.
+  std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice,
+                                               double strain_rate = 0.0);
 
   /// Number of particles of `body` that have failed (damage 1), as history.csv counts them.
   double n_failed_particles(const sph::Body<3> &body);

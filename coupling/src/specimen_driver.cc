@@ -6,6 +6,7 @@
 #include <coupling/curve_analysis.h>
 #include <coupling/run_case.h>
 
+#include <fem/load_frame.h>
 #include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/lattice.h>
@@ -127,7 +128,7 @@ namespace coupling
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
     contact_radius_               = 0.5 * lattice.cell_size[2];
-    body_                         = make_rock_body(prm_, lattice);
+    body_                         = make_rock_body(prm_, lattice, plan_.strain_rate);
     failure_ = std::make_unique<FailureWatch>(*body_, bts_);
     // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
     if (!bts_ && prm_.loaded_face_correction)
@@ -258,7 +259,18 @@ namespace coupling
     {
       throw InputError(std::string("Platens: ") + e.what());
     }
-    top_->set_loaded_face_velocity([this](double t) { return top_velocity(t); });
+    if (prm_.platens.frame_stiffness > 0)
+    {
+      // the frame's spring drives the rigid top platen (fem/load_frame.h); the platen moves with
+      // the velocity the frame's step gives, and the actuator with top_velocity
+      if (!top_->is_rigid())
+        throw InputError("Platens/Frame stiffness: drives a rigid platen; set Platens/Model = rigid or Frame stiffness = 0");
+      frame_ = std::make_unique<fem::LoadFrame>(prm_.platens.frame_stiffness, top_->total_mass(),
+                                                prm_.platens.frame_damping_ratio);
+      top_->set_loaded_face_velocity([this](double) { return frame_->platen_velocity(); });
+    }
+    else
+      top_->set_loaded_face_velocity([this](double t) { return top_velocity(t); });
     force_on_top_.assign(3 * top_->n_contact_nodes(), 0.0);
     force_on_bottom_.assign(3 * bottom_->n_contact_nodes(), 0.0);
   }
@@ -314,6 +326,10 @@ namespace coupling
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
     n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
+    if (frame_ && !(dt_ < 0.5 * frame_->stable_time_step()))
+      throw InputError("Platens/Frame stiffness: " + std::to_string(prm_.platens.frame_stiffness) +
+                       " N/m is too stiff for the explicit step (" + std::to_string(dt_) +
+                       " s) with the platen's mass; use a smaller stiffness (laboratory frames: about 1e8-1e10 N/m)");
 
     const auto &m           = body_->masses();
     const double m_particle = *std::min_element(m.begin(), m.end());
@@ -420,11 +436,17 @@ namespace coupling
     }
 
     const double h = dt_ / n_substeps_;
+    double rock_on_top = 0; // z-force of the rock on the top platen [N]
+    if (frame_)
+      for (std::size_t i = 2; i < force_on_top_.size(); i += 3)
+        rock_on_top += force_on_top_[i];
     for (int k = 0; k < n_substeps_; ++k)
     {
       top_->add_contact_forces(force_on_top_);
       bottom_->add_contact_forces(force_on_bottom_);
       const double t = time_ + k * h;
+      if (frame_) // the platen's velocity for the step: spring and rock forces at t
+        frame_->step(top_velocity(t + 0.5 * h), rock_on_top, h);
       top_->step(t, h);
       bottom_->step(t, h);
       // frame work: load-cell reaction times the loaded face's prescribed velocity (bottom fixed)
@@ -457,7 +479,10 @@ namespace coupling
   {
     HistoryRow r;
     r.time            = time_;
-    r.displacement    = bottom_->loaded_face_displacement() - top_->loaded_face_displacement();
+    // the platens' approach; with a load frame the actuator's stroke, which includes the frame's
+    // stretch, as a machine that reads its crosshead does
+    r.displacement    = bottom_->loaded_face_displacement() -
+                     (frame_ ? frame_->actuator_displacement() : top_->loaded_face_displacement());
     r.force           = top_->compressive_force();
     r.force_bottom    = bottom_->compressive_force();
     const double load = 0.5 * (r.force + r.force_bottom);
@@ -498,6 +523,11 @@ namespace coupling
     r.dissipated_energy   = e.dissipated() + contact_top_->friction_dissipation() +
                           contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
                           bottom_->damping_dissipation();
+    if (frame_) // the frame's spring and dashpot
+    {
+      r.internal_energy += frame_->spring_energy();
+      r.dissipated_energy += frame_->dissipated_energy();
+    }
     r.external_work = frame_work_ + pressure_work_;
     r.n_failed = n_failed_particles(*body_);
     return r;
@@ -566,6 +596,8 @@ namespace coupling
                              touching_ ? 1.0 : 0.0,
                              touch_strain_};
     out["driver.failure"] = failure_->state();
+    if (frame_)
+      out["driver.frame"] = frame_->state();
   }
 
   void SpecimenDriver::load_state(const StateArrays &in)
@@ -608,6 +640,13 @@ namespace coupling
     if (f == in.end() || f->second.size() != failure_->state().size())
       throw InputError("checkpoint: no driver.failure array; a checkpoint of an older cosim?");
     failure_->set_state(f->second);
+    if (frame_)
+    {
+      const auto fr = in.find("driver.frame");
+      if (fr == in.end() || fr->second.size() != frame_->state().size())
+        throw InputError("checkpoint: no driver.frame array; not a checkpoint of a run with Platens/Frame stiffness");
+      frame_->set_state(fr->second);
+    }
   }
 
   ParticleSnapshot SpecimenDriver::particle_snapshot() const
@@ -736,6 +775,13 @@ namespace coupling
     // the SPH pairs (fixed in total Lagrangian; at the end in updated Lagrangian): with n_steps
     // and wall_seconds the pair interactions per second (tools/bench)
     s.extra.push_back({"n_sph_pairs", static_cast<double>(body_->n_pairs())});
+    if (frame_)
+      s.extra.push_back({"frame_stiffness_N_per_m", frame_->stiffness()});
+    if (prm_.rock_case.rate_sensitivity != 0)
+      s.extra.push_back({"rate_strength_factor",
+                         sph::rock::rate_strength_factor(plan_.strain_rate,
+                                                         prm_.rock_case.reference_strain_rate,
+                                                         prm_.rock_case.rate_sensitivity)});
     s.max_displacement               = 0;
     for (const auto &r : rows)
       s.max_displacement = std::max(s.max_displacement, r.displacement);

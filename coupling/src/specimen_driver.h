@@ -23,6 +23,7 @@ namespace sph
 namespace fem
 {
   class SteelBody;
+  class LoadFrame;
 }
 
 namespace coupling
@@ -92,6 +93,9 @@ namespace coupling
     std::unique_ptr<sph::Body<3>> body_;
     std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
     std::unique_ptr<fem::SteelBody> top_, bottom_;
+    /// The load-frame spring that drives the (rigid) top platen; null for a rigid frame
+    /// (Platens/Frame stiffness = 0), where the top platen moves as the actuator
+    std::unique_ptr<fem::LoadFrame> frame_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
     double true_area_ = 0, lattice_area_ = 0;
     /// Half the lattice cell along the loading axis z [m]: where an outer particle's surface is,

@@ -160,11 +160,11 @@ namespace diagnose
           bts = mean_of("BTS");
         if (!ucs)
           for (const auto &c : data.curves)
-            if (c.group == name && c.test == "UCS")
+            if (c.group == name && c.test == "UCS" && c.failed)
               ucs = c.force[peak_index(c)] * 1e3 / (pi * c.diameter * c.diameter / 4);
         if (!bts)
           for (const auto &c : data.curves)
-            if (c.group == name && c.test == "BTS")
+            if (c.group == name && c.test == "BTS" && c.failed)
               bts = 2 * c.force[peak_index(c)] * 1e3 / (pi * c.diameter * c.length);
         if (m && m->c_MPa && m->phi_deg)
         {
@@ -189,9 +189,16 @@ namespace diagnose
                           ": no BTS or c, phi; the baseline assumes phi = 30 deg");
         }
         else
-          throw InputError("group " + name +
-                           ": no strength (UCS, BTS or c, phi) in material.csv, strength.csv "
-                           "or a UCS curve; the baseline needs one");
+        {
+          // stiffness data only (curves stopped before failure, a modulus): nothing of the group
+          // measures strength, so its strength enters no residual; a typical UCS = E / 400
+          // keeps the model defined (set below, once E is known)
+          g.phi    = 30;
+          g.source = "no strength measured (stiffness only): strength not diagnosed";
+          notes.push_back("group " + name +
+                          ": no strength (UCS, BTS, c, phi or a curve to failure); only its "
+                          "stiffness is diagnosed");
+        }
         // stiffness: measured E; else from specimen-displacement curves; else platen curves
         double E = m && m->E_GPa ? *m->E_GPa * 1e3 : 0;
         for (int pass = 0; pass < 2 && E <= 0; ++pass)
@@ -199,7 +206,8 @@ namespace diagnose
           double s = 0;
           int n    = 0;
           for (const auto &c : data.curves)
-            if (c.group == name && c.test != "BTS" && c.platen_displacement == (pass == 1))
+            if (c.group == name && c.test != "BTS" && !c.peak_only() &&
+                c.platen_displacement == (pass == 1))
               if (const double e = secant_modulus(c); e > 0)
               {
                 s += e;
@@ -215,6 +223,8 @@ namespace diagnose
           }
         }
         g.E = E > 0 ? E : 50e3;
+        if (!(g.ucs > 0))
+          g.ucs = g.E / 400;
         groups.push_back(g);
       }
       return groups;
@@ -236,8 +246,9 @@ namespace diagnose
         d.where    = r.where;
         all.push_back(d);
       }
-      const auto n_compressive = std::count_if(data.curves.begin(), data.curves.end(),
-                                               [](const Curve &c) { return c.test != "BTS"; });
+      const auto n_compressive =
+        std::count_if(data.curves.begin(), data.curves.end(),
+                      [](const Curve &c) { return c.test != "BTS" && !c.peak_only(); });
       const int n_points =
         std::clamp(160 / static_cast<int>(std::max<std::ptrdiff_t>(n_compressive, 1)), 8, 20);
       for (const auto &c : data.curves)
@@ -253,6 +264,8 @@ namespace diagnose
         p.where  = c.file;
         if (c.test == "BTS")
         {
+          if (!c.failed)
+            continue; // a BTS curve gives its peak only, and this one has none (reported)
           p.area     = c.diameter * c.length;
           p.measured = 2 * fp * 1e3 / (pi * c.diameter * c.length);
           p.sigma3   = -p.measured;
@@ -265,7 +278,10 @@ namespace diagnose
         p.slenderness  = c.length / c.diameter;
         p.volume_ratio = c.diameter * c.diameter * c.length / (50.0 * 50.0 * 100.0);
         p.strain_rate  = strain_rate_of(c);
-        all.push_back(p);
+        if (c.failed) // its largest force is the strength
+          all.push_back(p);
+        if (c.peak_only())
+          continue; // the peak only: too few rows for curve points
         curve_sd[src] = curve_noise(c);
         // pre-peak points between 5 and 90 % of the peak force, evenly in force: about 20 a
         // curve, fewer (down to 8) where a long programme would give more than 160 in all (its
@@ -297,7 +313,9 @@ namespace diagnose
       std::map<int, int> of_source;
       for (auto &d : all)
       {
-        if (d.kind == Datum::curve_point)
+        // a curve point shares its curve's condition; a curve without failure has no peak datum,
+        // and its first point (the same test, group, confinement, size and rate) names it
+        if (d.kind == Datum::curve_point && of_source.count(d.source))
         {
           d.condition = of_source.at(d.source);
           continue;
@@ -328,7 +346,8 @@ namespace diagnose
         if (d.kind == Datum::strength)
         {
           levels.insert(std::round(d.test == "BTS" ? -1e9 : d.sigma3 * 10) / 10);
-          (d.test == "BTS" ? tension : compression) = true;
+          // a TXE row with a tensile sigma3 (hybrid fracture) informs the tensile side too
+          (d.test == "BTS" || d.sigma3 < 0 ? tension : compression) = true;
           if (d.test != "BTS" && d.strain_rate > 0)
           {
             slender.push_back(d.slenderness);

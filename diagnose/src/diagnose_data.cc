@@ -91,9 +91,16 @@ namespace diagnose
           throw InputError(s.where + ": a BTS row needs sigma1_MPa = 0 and sigma3_MPa = -BTS < 0");
         if (s.test == "UCS" && !(s.sigma3 == 0 && s.sigma1 > 0))
           throw InputError(s.where + ": a UCS row needs sigma3_MPa = 0 and sigma1_MPa > 0");
-        if ((s.test == "CTCS" || s.test == "TXE") && !(s.sigma3 >= 0 && s.sigma1 > s.sigma3))
-          throw InputError(s.where + ": a " + s.test +
-                           " row needs sigma3_MPa >= 0 and sigma1_MPa > sigma3_MPa");
+        // CTCS: sigma3 is the confining fluid's pressure, which cannot pull. TXE: the fluid's
+        // pressure is sigma1 (= sigma2) and sigma3 the axial stress, which may be tensile
+        // (extension under low confinement: tensile and hybrid tensile-shear fractures)
+        if (s.test == "CTCS" && !(s.sigma3 >= 0 && s.sigma1 > s.sigma3))
+          throw InputError(s.where + ": a CTCS row needs sigma3_MPa >= 0 (the confining pressure: "
+                                     "a fluid cannot pull) and sigma1_MPa > sigma3_MPa");
+        if (s.test == "TXE" && !(s.sigma1 >= 0 && s.sigma1 > s.sigma3))
+          throw InputError(s.where + ": a TXE row needs sigma1_MPa >= 0 (the confining pressure: a "
+                                     "fluid cannot pull) and sigma1_MPa > sigma3_MPa (sigma3, the "
+                                     "axial stress, may be tensile)");
         rows.push_back(s);
       }
       return rows;
@@ -139,6 +146,14 @@ namespace diagnose
       if (d != "platen" && d != "specimen")
         throw InputError(shown + ": header 'displacement: " + clip(d) + "'; accepted: platen, specimen");
       c.platen_displacement = d == "platen";
+      if (keys.count("failure"))
+      {
+        const std::string f = keys.at("failure");
+        if (f != "yes" && f != "no")
+          throw InputError(shown + ": header 'failure: " + clip(f) +
+                           "'; accepted: yes (loaded to failure, the default), no (a curve only)");
+        c.failed = f == "yes";
+      }
       if (!(c.diameter > 0 && c.length > 0))
         throw InputError(shown + ": diameter and length/thickness must be positive");
       t.require_columns({"time_s", "displacement_mm", "force_kN"});
@@ -152,8 +167,12 @@ namespace diagnose
         c.displacement.push_back(di);
         c.force.push_back(fi);
       }
-      if (c.time.size() < 5)
-        throw InputError(shown + ": a curve needs at least 5 rows");
+      // fewer than 5 rows: the peak only; a curve without failure is its points, so needs them
+      if (c.time.empty())
+        throw InputError(shown + ": no rows; give at least the peak row (time_s,displacement_mm,force_kN)");
+      if (!c.failed && c.peak_only())
+        throw InputError(shown + ": a curve without failure ('failure: no') needs at least 5 rows; "
+                                 "it has no peak, so its points are all it gives");
       // a load frame records compression as a positive force; a curve that never loads, or
       // loads the wrong way, cannot be fitted (only tare noise may dip below zero)
       double peak = 0;

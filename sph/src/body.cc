@@ -143,12 +143,16 @@ namespace sph
                material_.residual_friction_angle >= material_.dilation_angle),
             "MaterialParameters::residual_friction_angle must be < 0 (none) or in "
             "[dilation angle, pi/2)");
+    require(material_.closure_modulus_ratio > 0 && material_.closure_modulus_ratio <= 1,
+            "MaterialParameters::closure_modulus_ratio must be in (0, 1] (1: no crack closure)");
+    require(material_.closure_modulus_ratio == 1 || material_.closure_stress > 0,
+            "MaterialParameters::closure_stress must be > 0 [Pa] with crack closure");
     require(positions.size() == volumes.size(), "positions and volumes differ in length");
     require(!positions.empty(), "no particles");
 
     n_threads_ = prm_.n_threads > 0 ? prm_.n_threads : omp_get_max_threads();
     rock_      = rock::make_model_constants(material_);
-    model_     = rock::make_model(material_.model);
+    model_     = rock::make_model_choice(material_);
     wave_speed_ = std::sqrt((rock_.K + 4.0 / 3.0 * rock_.G) / material_.density);
 
     const std::size_t n = positions.size();

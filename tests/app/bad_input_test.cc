@@ -411,3 +411,35 @@ TEST(BadInput, CutTooShortForTheDiscToEnterTheRock)
                     "Cutter/Cut length=0.05"},
                    {"Cutter/Cut length", "too short", "80.8"});
 }
+
+// The effects' keys: each range, and each key that only acts with another (no key read but
+// ignored): the closure stress without closure, rate sensitivity without strength, the frame on
+// an elastic platen, the frame's damping without a frame.
+TEST(BadInput, EffectKeysOutOfRangeOrWithoutTheirModel)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Closure modulus ratio=0"},
+                   {"Rock/Closure modulus ratio", "(0, 1]"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Closure stress=3e7"},
+                   {"Rock/Closure stress", "Closure modulus ratio < 1"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Model=elastic", "--set", "Rock/Rate sensitivity=0.05"},
+                   {"Rock/Rate sensitivity", "elastic"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Reference strain rate=1"},
+                   {"Rock/Reference strain rate", "Rate sensitivity > 0"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Platens/Model=elastic", "--set", "Platens/Frame stiffness=1e9"},
+                   {"Platens/Frame stiffness", "rigid"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Platens/Frame damping ratio=0.5"},
+                   {"Platens/Frame damping ratio", "Frame stiffness > 0"});
+}
+
+// diagnose refuses only the physically impossible, in one line with exit 2: a TXE row whose
+// confining fluid pulls
+TEST(BadInput, DiagnoseTxeWithPullingFluid)
+{
+  Sandbox box;
+  const fs::path dir = box.dir() / "data";
+  fs::create_directories(dir);
+  std::ofstream(dir / "strength.csv") << "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nTXE,A,-3,-9\n";
+  expect_bad_input(box, {"diagnose", dir.string(), "-o", (box.dir() / "out").string()},
+                   {"strength.csv:3", "fluid cannot pull"});
+}

@@ -203,3 +203,114 @@ TEST(RockExtensions, RateFactorPerDecade)
   EXPECT_DOUBLE_EQ(sph::rock::rate_strength_factor(1e-5, 1e-5, 0.05), 1.0);
   EXPECT_NEAR(sph::rock::rate_strength_factor(1e-3, 1e-5, 0.05), 1.10, 1e-12);
 }
+
+namespace
+{
+  /// A UCS curve file of group A (50 x 100 mm, platen displacement): the header plus `rows`.
+  std::string ucs_curve(const std::string &rows, const std::string &extra_header = "")
+  {
+    return "# test: UCS\n# group: A\n# diameter_mm: 50\n# length_mm: 100\n# displacement: specimen\n" +
+           extra_header + "time_s,displacement_mm,force_kN\n" + rows;
+  }
+
+  /// Pre-peak rows of a linear curve with E = 60 GPa (A = 1963.5 mm^2, L = 100 mm) up to the
+  /// force `top` [kN], then (with `failure`) a drop.
+  std::string linear_rows(const double top, const bool failure)
+  {
+    std::string s;
+    const double area = M_PI * 25 * 25;
+    for (int i = 0; i <= 10; ++i)
+    {
+      const double f = top * i / 10.0, d = f * 1e3 / area / 60e3 * 100;
+      s += std::to_string(i) + "," + std::to_string(d) + "," + std::to_string(f) + "\n";
+    }
+    if (failure)
+      s += "11," + std::to_string(top * 1e3 / M_PI / 625 / 60e3 * 100 * 1.05) + "," +
+           std::to_string(0.5 * top) + "\n";
+    return s;
+  }
+} // namespace
+
+// Triaxial extension: sigma1 = sigma2 is the confining fluid's pressure and sigma3 the axial
+// stress, which may be tensile (tensile and hybrid tensile-shear fractures): accepted, and it
+// informs the tensile side. Refused only what cannot be: a fluid that pulls (sigma1 < 0 in TXE,
+// sigma3 < 0 in CTCS) or sigma1 <= sigma3 (not the major principal stress).
+TEST(DiagnoseData, TensileTxeRowsAreAcceptedAndImpossibleOnesRefused)
+{
+  auto d = folder("txe-hybrid");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nUCS,A,155,0\n"
+                             "TXE,A,40,-5\nTXE,A,20,-8\nTXE,A,300,40\nCTCS,A,300,20\n");
+  EXPECT_EQ(error_of(d), "");
+  const Data data = read_data(d);
+  ASSERT_EQ(data.strengths.size(), 6u);
+  EXPECT_EQ(data.strengths[3].sigma3, -8);
+  // the study runs on them: the tensile TXE rows give the tension cut-off the tensile side it
+  // needs (no BTS here), so it is a candidate, not "not applicable"
+  const Diagnosis g = diagnose::diagnose(data, Options{});
+  EXPECT_EQ(g.n_strength, 6);
+  bool cutoff_candidate = false;
+  for (const auto &c : g.candidates)
+    cutoff_candidate = cutoff_candidate || c.name == "tension_cutoff";
+  EXPECT_TRUE(cutoff_candidate);
+
+  d = folder("txe-fluid-pulls");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nTXE,A,-2,-8\n");
+  EXPECT_NE(error_of(d).find("strength.csv:3"), std::string::npos) << error_of(d);
+  EXPECT_NE(error_of(d).find("fluid cannot pull"), std::string::npos) << error_of(d);
+  d = folder("txe-unordered");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nTXE,A,10,12\n");
+  EXPECT_NE(error_of(d).find("sigma1_MPa > sigma3_MPa"), std::string::npos) << error_of(d);
+  d = folder("ctcs-tensile-confinement");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nCTCS,A,100,-5\n");
+  EXPECT_NE(error_of(d).find("a CTCS row needs sigma3_MPa >= 0"), std::string::npos) << error_of(d);
+}
+
+// A specimen with only its peak (a curve file of fewer than 5 rows) gives a strength and no curve
+// points; a specimen with only a curve (header 'failure: no': stopped before failure) gives curve
+// points and no strength, and a group measured that way alone is diagnosed for its stiffness.
+TEST(DiagnoseData, PeakOnlyAndCurveOnlySpecimensAreAccepted)
+{
+  auto d = folder("peak-only");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nBTS,A,0,-10\n");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/peak.csv", ucs_curve("10,0.25,300\n"));
+  EXPECT_EQ(error_of(d), "");
+  Diagnosis g = diagnose::diagnose(read_data(d), Options{});
+  EXPECT_EQ(g.n_strength, 3); // two rows and the peak
+  EXPECT_EQ(g.n_curve_points, 0);
+
+  d = folder("curve-only");
+  write(d + "/strength.csv", "test,group,sigma1_MPa,sigma3_MPa\nUCS,A,150,0\nBTS,A,0,-10\n");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/modulus.csv", ucs_curve(linear_rows(100, false), "# failure: no\n"));
+  EXPECT_EQ(error_of(d), "");
+  g = diagnose::diagnose(read_data(d), Options{});
+  EXPECT_EQ(g.n_strength, 2); // the curve's largest force (100 kN, 51 MPa) is no strength
+  EXPECT_GT(g.n_curve_points, 5);
+
+  d = folder("stiffness-only-group");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/a.csv", ucs_curve(linear_rows(100, false), "# failure: no\n"));
+  write(d + "/curves/b.csv", ucs_curve(linear_rows(120, false), "# failure: no\n"));
+  EXPECT_EQ(error_of(d), "");
+  g = diagnose::diagnose(read_data(d), Options{});
+  EXPECT_EQ(g.n_strength, 0);
+  EXPECT_GT(g.n_curve_points, 10);
+  // the baseline's E is the curves' own (60 GPa): it explains them to their noise
+  EXPECT_LT(g.baseline.fit, 1.0);
+
+  // what cannot be: no rows at all, a curve without failure too short to be a curve, an
+  // unknown failure flag
+  d = folder("no-rows");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/x.csv", ucs_curve(""));
+  EXPECT_NE(error_of(d).find("no rows"), std::string::npos) << error_of(d);
+  d = folder("short-curve-only");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/x.csv", ucs_curve("0,0,0\n1,0.1,50\n", "# failure: no\n"));
+  EXPECT_NE(error_of(d).find("at least 5 rows"), std::string::npos) << error_of(d);
+  d = folder("failure-maybe");
+  fs::create_directories(d + "/curves");
+  write(d + "/curves/x.csv", ucs_curve(linear_rows(100, true), "# failure: maybe\n"));
+  EXPECT_NE(error_of(d).find("accepted: yes"), std::string::npos) << error_of(d);
+}

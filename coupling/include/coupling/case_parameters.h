@@ -28,6 +28,10 @@ namespace coupling
     double bts = 0.0;           ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
     double strength_scatter = 0.0; ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
     int scatter_seed = 1;          ///< seed of the strength scatter (same seed, same rock)
+    /// Rate-dependent strength (sph/rate_strength.h): strength gain per decade of the nominal
+    /// strain rate [-]; 0 = rate independent
+    double rate_sensitivity = 0.0;
+    double reference_strain_rate = 1e-5; ///< [1/s] rate at which the strengths are as given
   };
 
   /// The case's rock: the library's defaults, except that a case's rock softens (over a plastic
@@ -70,6 +74,12 @@ namespace coupling
     double contact_stiffness_scale = 0.1;
     std::string shape = "flat";   ///< BTS: flat platens or ISRM curved jaws (jaw)
     double jaw_radius = 0.0;      ///< BTS jaw: radius of the contact arc [m]; 0 = 1.5 x disc radius
+    /// Load-frame stiffness k_frame [N/m] in series with the top platen (fem/load_frame.h): the
+    /// actuator moves at the loading rate, the platen by that minus F / k_frame, and the
+    /// displacement is read at the actuator; 0 = a rigid frame (the platen is the actuator)
+    double frame_stiffness = 0.0;
+    /// Damping ratio zeta of the frame's dashpot, c = 2 zeta sqrt(k_frame m_platen) [-]
+    double frame_damping_ratio = 1.0;
   };
 
   /// Loading path. A strain rate of 0 derives the rate from the specimen's wave transit time.

@@ -43,7 +43,12 @@ namespace diagnose
     double length            = 0;    ///< UCS/CTCS length or BTS thickness [mm]
     double confining         = 0;    ///< [MPa]
     bool platen_displacement = true; ///< displacement read at the platen (else on the specimen)
+    /// Loaded to failure (header `failure: yes`, the default): its largest force is the
+    /// specimen's strength. `failure: no`: a curve only (a stiffness test stopped before failure).
+    bool failed = true;
     std::vector<double> time, displacement, force; ///< [s], [mm], [kN]
+    /// Fewer than 5 rows: the specimen's peak only (too few points for the curve itself).
+    bool peak_only() const { return time.size() < 5; }
   };
 
   /// A measured-data folder (any subset of the three kinds).

@@ -13,6 +13,7 @@
 ///                            x += dt v; external forces are cleared afterwards.
 /// Units SI; stress tension-positive; energies in J (2-D: J per metre of thickness).
 
+#include <sph/crack_closure.h>
 #include <sph/neighbour_search.h>
 #include <sph/parameters.h>
 #include <sph/particle_store.h>
@@ -210,7 +211,7 @@ namespace sph
     Parameters             prm_;
     MaterialParameters     material_;
     rock::ModelConstants   rock_;
-    rock::Model            model_;
+    rock::ModelChoice      model_;
     ParticleStore<dim>     p_;
     PairList               pairs_;
     std::vector<Vector<dim>> grad_w_;     // per pair: grad_i W_ij (reference config in TL)

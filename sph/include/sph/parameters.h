@@ -71,5 +71,11 @@ namespace sph
     /// goes linearly from phi to phi_r with the damage, as the cohesion goes to its residual.
     /// < 0: phi throughout (no friction softening).
     double    residual_friction_angle = -1.0;
+    /// Crack closure (toe) elasticity, sph/crack_closure.h: Young's modulus at zero compressive
+    /// stress E0 over E [-], in (0, 1]; 1 = none (linear elasticity).
+    double    closure_modulus_ratio = 1.0;
+    /// Crack closure stress sigma_cc [Pa] over which the modulus rises from E0 to E (used when
+    /// closure_modulus_ratio < 1).
+    double    closure_stress = 20e6;
   };
 } // namespace sph
