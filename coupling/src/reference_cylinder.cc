@@ -492,7 +492,7 @@ namespace coupling
       // Newton with a backtracking line search on the residual norm: the return mapping switches
       // between the plane, edge and apex returns, and a full step can cycle between them
       double res = assemble(u, u_old, false, constraints_);
-      for (; iterations < 40; ++iterations)
+      for (; iterations < 25; ++iterations)
       {
         if (!std::isfinite(res))
           return false;
@@ -588,12 +588,12 @@ namespace coupling
         unsigned int iterations = 0;
         if (!solve_increment(u, u_old, target, last_step > 0, iterations))
         {
-          if (++halvings > 6)
+          if (++halvings > 4)
           {
             // the curve ends here; where the rock's flow is strongly non-associated this happens
             // near the peak, where the tangent loses definiteness and the solution its uniqueness
             result.end_reason = "Newton did not converge at platen displacement " + std::to_string(target * 1e3) +
-                                " mm (6 halvings of the increment)";
+                                " mm (4 halvings of the increment)";
             result.n_newton_iterations += iterations;
             break;
           }
@@ -641,10 +641,14 @@ namespace coupling
       if (result.end_reason.empty())
         result.end_reason = "end strain";
 
+      // the peak: the first increment within 1e-7 of the largest force (on a plateau, where
+      // the limit load is first reached)
+      double largest = 0;
+      for (const auto &row : result.curve)
+        largest = std::max(largest, row.force);
       std::size_t peak = 0;
-      for (std::size_t i = 0; i < result.curve.size(); ++i)
-        if (result.curve[i].force > result.curve[peak].force)
-          peak = i;
+      while (result.curve[peak].force < largest * (1 - 1e-7))
+        ++peak;
       result.peak_force           = result.curve[peak].force;
       result.peak_stress          = result.curve[peak].stress;
       result.strain_at_peak       = result.curve[peak].strain;
