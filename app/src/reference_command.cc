@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -119,6 +120,15 @@ namespace app
       char buffer[64];
       std::snprintf(buffer, sizeof buffer, "%.10g", v + 0.0);
       return buffer;
+    }
+
+    /// A value rounded to 10 significant digits (as summary.json of `cosim run`: 282.19, not
+    /// 282.19000000000003); null when not finite.
+    nlohmann::ordered_json rounded(const double v)
+    {
+      if (!std::isfinite(v))
+        return nullptr;
+      return std::strtod(number(v).c_str(), nullptr);
     }
 
     std::string curve_csv(const coupling::ReferenceResult &r)
@@ -245,15 +255,15 @@ namespace app
     s["n_increments"]  = r.curve.size() - 1;
     s["n_newton_iterations"] = r.n_newton_iterations;
     s["n_cutbacks"]    = r.n_cutbacks;
-    s["end_strain"]    = o.reference.end_strain;
-    s["peak_stress_MPa"]          = r.peak_stress * 1e-6;
-    s["peak_force_kN"]            = r.peak_force * 1e-3;
-    s["strain_at_peak"]           = r.strain_at_peak;
-    s["platen_displacement_at_peak_mm"] = r.displacement_at_peak * 1e3;
-    s["half_peak_force_kN"]       = r.half_peak_force * 1e-3;
-    s["mohr_coulomb_ucs_MPa"]     = mohr_coulomb ? Json(closed_form * 1e-6) : Json(nullptr);
-    s["platen_diameter_mm"]       = r.platen_diameter * 1e3;
-    s["wall_seconds"]             = r.wall_seconds;
+    s["end_strain"]    = rounded(o.reference.end_strain);
+    s["peak_stress_MPa"]          = rounded(r.peak_stress * 1e-6);
+    s["peak_force_kN"]            = rounded(r.peak_force * 1e-3);
+    s["strain_at_peak"]           = rounded(r.strain_at_peak);
+    s["platen_displacement_at_peak_mm"] = rounded(r.displacement_at_peak * 1e3);
+    s["half_peak_force_kN"]       = rounded(r.half_peak_force * 1e-3);
+    s["mohr_coulomb_ucs_MPa"]     = mohr_coulomb ? rounded(closed_form * 1e-6) : Json(nullptr);
+    s["platen_diameter_mm"]       = rounded(r.platen_diameter * 1e3);
+    s["wall_seconds"]             = rounded(r.wall_seconds);
     s["end_reason"]               = r.end_reason;
     s["complete"]                 = r.complete();
     s["notes"]                    = notes;
