@@ -166,6 +166,8 @@ namespace app
            "softening and no strength scatter. The platens are rigid or elastic steel (Platens/Youngs\n"
            "modulus, Poissons ratio, Thickness, Diameter; 0 = specimen diameter + 4 particle spacings),\n"
            "tied to the rock's end faces node by node, on the assumption that the interface stays closed.\n"
+           "The coupled solver's numerics (SPH/*, Loading/Strain rate, Platens/Element size, Contact\n"
+           "stiffness scale, Density) do not apply; SPH/Particle spacing only sizes platens of Diameter 0.\n"
            "\n"
            "Writes into OUTDIR (default results/<case stem>-reference):\n"
            "  summary.json          peak stress and force, strain and platen displacement at the peak,\n"
