@@ -74,8 +74,9 @@ namespace coupling
     }
 
     /// A structured block of cells [r_0..r_n] x [z_0..z_m] with its own vertices.
-    void add_block(const std::vector<double> &rs, const std::vector<double> &zs, const types::material_id region,
-                   std::vector<Point<2>> &vertices, std::vector<CellData<2>> &cells)
+    void add_block(const std::vector<double> &rs, const std::vector<double> &zs,
+                   const types::material_id region, std::vector<Point<2>> &vertices,
+                   std::vector<CellData<2>> &cells)
     {
       const unsigned int base = vertices.size(), nr = rs.size();
       for (const double z : zs)
@@ -105,17 +106,17 @@ namespace coupling
     /// One Gauss point's converged and current state (rock only).
     struct PointState
     {
-      Voigt4             stress{};       ///< converged stress [Pa]
-      sph::MaterialState state;          ///< converged history
-      Voigt4             stress_new{};   ///< stress of the current iterate [Pa]
-      sph::MaterialState state_new;      ///< history of the current iterate
+      Voigt4 stress{};              ///< converged stress [Pa]
+      sph::MaterialState state;     ///< converged history
+      Voigt4 stress_new{};          ///< stress of the current iterate [Pa]
+      sph::MaterialState state_new; ///< history of the current iterate
     };
 
     /// Where a stress profile is sampled: (active cell index, quadrature index), sorted.
     struct SamplePoint
     {
       unsigned int cell, q;
-      double       r, z;
+      double r, z;
     };
 
     class ReferenceModel
@@ -135,46 +136,46 @@ namespace coupling
                       const AffineConstraints<double> &constraints);
       /// Newton from the predictor `u`; `predicted`: u extrapolates the last increments (else
       /// only its prescribed values are new, and the first iteration uses the elastic stiffness).
-      bool   solve_increment(Vector<double> &u, const Vector<double> &u_old, double displacement,
-                             bool predicted, unsigned int &iterations);
-      void   set_prescribed(Vector<double> &u, double displacement) const;
+      bool solve_increment(Vector<double> &u, const Vector<double> &u_old, double displacement,
+                           bool predicted, unsigned int &iterations);
+      void set_prescribed(Vector<double> &u, double displacement) const;
       double end_face_mean_uz(const Vector<double> &u, double z) const;
       std::vector<ReferenceStressSample> samples(const std::vector<SamplePoint> &where) const;
 
-      const CaseParameters    &prm_;
-      const ReferenceOptions   options_;
-      sph::MaterialParameters  rock_;
+      const CaseParameters &prm_;
+      const ReferenceOptions options_;
+      sph::MaterialParameters rock_;
       sph::rock::ModelConstants constants_;
-      sph::rock::Model         model_;
-      Tangent4                 rock_elastic_, steel_elastic_;
+      sph::rock::Model model_;
+      Tangent4 rock_elastic_, steel_elastic_;
       double R_ = 0, L_ = 0, Rp_ = 0, t_ = 0;
-      bool   elastic_platens_ = false, bonded_ = false;
+      bool elastic_platens_ = false, bonded_ = false;
 
-      Triangulation<2>          tria_;
-      FESystem<2>               fe_;
-      DoFHandler<2>             dof_;
-      QGauss<2>                 quadrature_;
+      Triangulation<2> tria_;
+      FESystem<2> fe_;
+      DoFHandler<2> dof_;
+      QGauss<2> quadrature_;
       AffineConstraints<double> constraints_; ///< homogeneous: Dirichlet dofs and interface ties
       /// Dirichlet dofs and the factor of the platen displacement they take (0 or -1)
       std::vector<std::pair<types::global_dof_index, double>> prescribed_;
       std::vector<types::global_dof_index> loaded_dofs_; ///< u_z of the moving loaded face
-      SparsityPattern           pattern_;
-      SparseMatrix<double>      matrix_;
-      Vector<double>            rhs_, internal_force_;
-      std::vector<PointState>   points_;
-      std::vector<SamplePoint>  end_face_points_, axis_points_;
+      SparsityPattern pattern_;
+      SparseMatrix<double> matrix_;
+      Vector<double> rhs_, internal_force_;
+      std::vector<PointState> points_;
+      std::vector<SamplePoint> end_face_points_, axis_points_;
       double force_ = 0, reaction_norm_ = 0;
     };
 
     ReferenceModel::ReferenceModel(const CaseParameters &prm, const ReferenceOptions &options)
-      : prm_(prm)
-      , options_(options)
-      , rock_(reference_rock(prm))
-      , constants_(sph::rock::make_model_constants(rock_))
-      , model_(sph::rock::make_model(rock_.model))
-      , fe_(FE_Q<2>(options.degree), 2)
-      , dof_(tria_)
-      , quadrature_(options.degree + 1)
+        : prm_(prm)
+        , options_(options)
+        , rock_(reference_rock(prm))
+        , constants_(sph::rock::make_model_constants(rock_))
+        , model_(sph::rock::make_model(rock_.model))
+        , fe_(FE_Q<2>(options.degree), 2)
+        , dof_(tria_)
+        , quadrature_(options.degree + 1)
     {
       R_               = 0.5 * prm.diameter;
       L_               = prm.length;
@@ -184,17 +185,17 @@ namespace coupling
       t_               = prm.platens.thickness;
       rock_elastic_    = isotropic_tangent(constants_.K, constants_.G);
       const double Es = prm.platens.steel.youngs_modulus, nus = prm.platens.steel.poissons_ratio;
-      steel_elastic_   = isotropic_tangent(Es / (3.0 * (1.0 - 2.0 * nus)), Es / (2.0 * (1.0 + nus)));
+      steel_elastic_ = isotropic_tangent(Es / (3.0 * (1.0 - 2.0 * nus)), Es / (2.0 * (1.0 + nus)));
     }
 
     void ReferenceModel::make_mesh()
     {
-      const unsigned int n  = options_.n_radial;
-      const double       h  = R_ / n;
-      const auto         nz = [h](const double length) {
+      const unsigned int n = options_.n_radial;
+      const double h       = R_ / n;
+      const auto nz        = [h](const double length) {
         return std::max(1u, static_cast<unsigned int>(std::lround(length / h)));
       };
-      std::vector<Point<2>>    vertices;
+      std::vector<Point<2>> vertices;
       std::vector<CellData<2>> cells;
       const std::vector<double> rock_r = lines(0, R_, n);
       add_block(rock_r, lines(0, L_, nz(L_)), rock_region, vertices, cells);
@@ -222,13 +223,13 @@ namespace coupling
 
       // classify the boundary dofs by the face they lie on
       std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
-      std::map<types::global_dof_index, unsigned int> axis, rock_bottom, rock_top, platen_bottom, platen_top,
-        loaded_bottom, loaded_top; // dof -> component
+      std::map<types::global_dof_index, unsigned int> axis, rock_bottom, rock_top, platen_bottom,
+        platen_top, loaded_bottom, loaded_top; // dof -> component
       for (const auto &cell : dof_.active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
         {
-          const Point<2> c      = cell->face(f)->center();
-          const auto     region = cell->material_id();
+          const Point<2> c                                     = cell->face(f)->center();
+          const auto region                                    = cell->material_id();
           std::map<types::global_dof_index, unsigned int> *set = nullptr;
           if (std::abs(c[0]) < tol)
             set = &axis;
@@ -266,8 +267,9 @@ namespace coupling
           prescribe(d, 0.0);
       // the fixed (bottom) and moving (top) loaded faces: u_z given; u_r held where the platen is
       // bonded (rigid) or its loaded face is clamped laterally (elastic)
-      const bool hold_r = elastic_platens_ ? prm_.platens.steel.loaded_face_lateral == fem::LoadedFaceLateral::fixed
-                                           : bonded_;
+      const bool hold_r =
+        elastic_platens_ ? prm_.platens.steel.loaded_face_lateral == fem::LoadedFaceLateral::fixed
+                         : bonded_;
       const auto &bottom = elastic_platens_ ? loaded_bottom : rock_bottom;
       const auto &top    = elastic_platens_ ? loaded_top : rock_top;
       for (const auto &[d, c] : bottom)
@@ -303,7 +305,8 @@ namespace coupling
               continue; // on the axis: u_r = 0 on both sides
             const auto it = platen_nodes.find(key(d, c));
             if (it == platen_nodes.end())
-              throw std::logic_error("reference_cylinder: the platen mesh does not conform to the rock's");
+              throw std::logic_error(
+                "reference_cylinder: the platen mesh does not conform to the rock's");
             constraints_.add_line(d);
             constraints_.add_entry(d, it->second, 1.0);
           }
@@ -328,10 +331,10 @@ namespace coupling
         if (cell->material_id() != rock_region)
           continue;
         fev.reinit(cell);
-        const auto  &x    = fev.get_quadrature_points();
+        const auto &x     = fev.get_quadrature_points();
         const double zmax = cell->center()[1] + 0.5 * cell->extent_in_direction(1);
         const double rmin = cell->center()[0] - 0.5 * cell->extent_in_direction(0);
-        double       top_z = -1e300, low_r = 1e300;
+        double top_z = -1e300, low_r = 1e300;
         for (unsigned int q = 0; q < nq; ++q)
           top_z = std::max(top_z, x[q][1]), low_r = std::min(low_r, x[q][0]);
         for (unsigned int q = 0; q < nq; ++q)
@@ -360,14 +363,16 @@ namespace coupling
         u[d] = factor * displacement;
     }
 
-    double ReferenceModel::assemble(const Vector<double> &u, const Vector<double> &u_old, const bool elastic_tangent,
+    double ReferenceModel::assemble(const Vector<double> &u, const Vector<double> &u_old,
+                                    const bool elastic_tangent,
                                     const AffineConstraints<double> &constraints)
     {
       matrix_         = 0;
       rhs_            = 0;
       internal_force_ = 0;
-      FEValues<2> fev(fe_, quadrature_, update_values | update_gradients | update_quadrature_points |
-                                          update_JxW_values);
+      FEValues<2> fev(fe_, quadrature_,
+                      update_values | update_gradients | update_quadrature_points |
+                        update_JxW_values);
       const unsigned int n = fe_.n_dofs_per_cell(), nq = quadrature_.size();
       FullMatrix<double> cell_matrix(n, n);
       Vector<double> cell_rhs(n), cell_force(n);
@@ -380,8 +385,8 @@ namespace coupling
         cell->get_dof_indices(dofs);
         for (unsigned int i = 0; i < n; ++i)
           u_cell[i] = u[dofs[i]], u_old_cell[i] = u_old[dofs[i]];
-        cell_matrix = 0;
-        cell_force  = 0;
+        cell_matrix     = 0;
+        cell_force      = 0;
         const bool rock = cell->material_id() == rock_region;
         for (unsigned int q = 0; q < nq; ++q)
         {
@@ -391,7 +396,7 @@ namespace coupling
           for (unsigned int i = 0; i < n; ++i)
           {
             const unsigned int c = fe_.system_to_component_index(i).first;
-            const auto g = fev.shape_grad_component(i, q, c);
+            const auto g         = fev.shape_grad_component(i, q, c);
             if (c == 0)
               B[i] = {{g[0], 0.0, fev.shape_value_component(i, q, 0) / r, g[1]}};
             else
@@ -408,7 +413,8 @@ namespace coupling
             Voigt4 de;
             for (int k = 0; k < 4; ++k)
               de[k] = eps[k] - eps_old[k];
-            const ReferencePointUpdate up = reference_point_update(model_, constants_, p.stress, p.state, de);
+            const ReferencePointUpdate up =
+              reference_point_update(model_, constants_, p.stress, p.state, de);
             p.stress_new = up.stress;
             p.state_new  = up.state;
             sigma        = up.stress;
@@ -431,7 +437,8 @@ namespace coupling
             }
             cell_force[i] += bs * w;
             for (unsigned int j = 0; j < n; ++j)
-              cell_matrix(i, j) += (BC[0] * B[j][0] + BC[1] * B[j][1] + BC[2] * B[j][2] + BC[3] * B[j][3]) * w;
+              cell_matrix(i, j) +=
+                (BC[0] * B[j][0] + BC[1] * B[j][1] + BC[2] * B[j][2] + BC[3] * B[j][3]) * w;
           }
         }
         for (unsigned int i = 0; i < n; ++i)
@@ -449,8 +456,9 @@ namespace coupling
       return rhs_.l2_norm();
     }
 
-    bool ReferenceModel::solve_increment(Vector<double> &u, const Vector<double> &u_old, const double displacement,
-                                         const bool predicted, unsigned int &iterations)
+    bool ReferenceModel::solve_increment(Vector<double> &u, const Vector<double> &u_old,
+                                         const double displacement, const bool predicted,
+                                         unsigned int &iterations)
     {
       // a force scale for the residual: 1e-6 of the rock's elastic stiffness times its area
       const double floor = 1e-6 * rock_.youngs_modulus * M_PI * R_ * R_;
@@ -522,7 +530,8 @@ namespace coupling
     double ReferenceModel::end_face_mean_uz(const Vector<double> &u, const double z) const
     {
       const QGauss<1> face_quadrature(options_.degree + 1);
-      FEFaceValues<2> fv(fe_, face_quadrature, update_values | update_quadrature_points | update_JxW_values);
+      FEFaceValues<2> fv(fe_, face_quadrature,
+                         update_values | update_quadrature_points | update_JxW_values);
       std::vector<Vector<double>> values(face_quadrature.size(), Vector<double>(2));
       double integral = 0, area = 0;
       for (const auto &cell : dof_.active_cell_iterators())
@@ -545,7 +554,8 @@ namespace coupling
       return integral / area;
     }
 
-    std::vector<ReferenceStressSample> ReferenceModel::samples(const std::vector<SamplePoint> &where) const
+    std::vector<ReferenceStressSample>
+    ReferenceModel::samples(const std::vector<SamplePoint> &where) const
     {
       const unsigned int nq = quadrature_.size();
       std::vector<ReferenceStressSample> out;
@@ -592,8 +602,8 @@ namespace coupling
           {
             // the curve ends here; where the rock's flow is strongly non-associated this happens
             // near the peak, where the tangent loses definiteness and the solution its uniqueness
-            result.end_reason = "Newton did not converge at platen displacement " + std::to_string(target * 1e3) +
-                                " mm (4 halvings of the increment)";
+            result.end_reason = "Newton did not converge at platen displacement " +
+                                std::to_string(target * 1e3) + " mm (4 halvings of the increment)";
             result.n_newton_iterations += iterations;
             break;
           }
@@ -614,13 +624,13 @@ namespace coupling
 
         ReferenceCurveRow row;
         row.platen_displacement = done;
-        row.strain = (end_face_mean_uz(u, 0.0) - end_face_mean_uz(u, L_)) / L_;
+        row.strain              = (end_face_mean_uz(u, 0.0) - end_face_mean_uz(u, L_)) / L_;
         Vector<double> mid(2);
         VectorTools::point_value(dof_, u, Point<2>(R_, 0.5 * L_), mid);
         row.radial_strain = mid[0] / R_;
-        row.force      = force_;
-        row.stress     = force_ / area;
-        row.iterations = iterations;
+        row.force         = force_;
+        row.stress        = force_ / area;
+        row.iterations    = iterations;
         result.curve.push_back(row);
         face_history.push_back(samples(end_face_points_));
         axis_history.push_back(samples(axis_points_));
@@ -630,7 +640,8 @@ namespace coupling
         {
           bool flat = true;
           for (std::size_t i = n - 3; i < n; ++i)
-            flat = flat && std::abs(result.curve[i].force - result.curve[i - 1].force) <= 1e-7 * result.curve[i].force;
+            flat = flat && std::abs(result.curve[i].force - result.curve[i - 1].force) <=
+                             1e-7 * result.curve[i].force;
           if (flat)
           {
             result.end_reason = "limit load: the force stayed within 1e-7 over three increments";
@@ -655,12 +666,14 @@ namespace coupling
       result.displacement_at_peak = result.curve[peak].platen_displacement;
       // the profiles at half the peak, on the way up: linear in the force between two increments
       result.half_peak_force = 0.5 * result.peak_force;
-      std::size_t k = 1;
+      std::size_t k          = 1;
       while (k < peak && result.curve[k].force < result.half_peak_force)
         ++k;
       const double f0 = result.curve[k - 1].force, f1 = result.curve[k].force;
-      const double a  = f1 > f0 ? std::clamp((result.half_peak_force - f0) / (f1 - f0), 0.0, 1.0) : 1.0;
-      const auto blend = [a](const std::vector<ReferenceStressSample> &s0, const std::vector<ReferenceStressSample> &s1) {
+      const double a =
+        f1 > f0 ? std::clamp((result.half_peak_force - f0) / (f1 - f0), 0.0, 1.0) : 1.0;
+      const auto blend = [a](const std::vector<ReferenceStressSample> &s0,
+                             const std::vector<ReferenceStressSample> &s1) {
         std::vector<ReferenceStressSample> out = s1;
         for (std::size_t i = 0; i < out.size(); ++i)
         {
@@ -671,7 +684,8 @@ namespace coupling
       };
       result.end_face = blend(face_history[k - 1], face_history[k]);
       result.axis     = blend(axis_history[k - 1], axis_history[k]);
-      result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      result.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return result;
     }
   } // namespace
@@ -691,22 +705,26 @@ namespace coupling
     return prm.platens.diameter > 0 ? prm.platens.diameter : prm.diameter + 4.0 * prm.sph.spacing;
   }
 
-  ReferencePointUpdate reference_point_update(const sph::rock::Model &model, const sph::rock::ModelConstants &constants,
-                                              const Voigt4 &stress_old, const sph::MaterialState &state_old,
+  ReferencePointUpdate reference_point_update(const sph::rock::Model &model,
+                                              const sph::rock::ModelConstants &constants,
+                                              const Voigt4 &stress_old,
+                                              const sph::MaterialState &state_old,
                                               const Voigt4 &strain_increment)
   {
     const sph::Tensor3 s_old = stress_tensor(stress_old);
-    const auto update = [&](const Voigt4 &de) {
-      return std::visit([&](const auto &m) { return m(s_old, strain_tensor(de), state_old, constants); }, model);
+    const auto update        = [&](const Voigt4 &de) {
+      return std::visit(
+        [&](const auto &m) { return m(s_old, strain_tensor(de), state_old, constants); }, model);
     };
     const sph::rock::StressUpdate base = update(strain_increment);
     ReferencePointUpdate out;
     out.stress = stress_voigt(base.stress);
     out.state  = base.state;
     // elastic where the return changed nothing
-    const sph::Tensor3 trial = sph::rock::elastic_trial(s_old, strain_tensor(strain_increment), constants);
+    const sph::Tensor3 trial =
+      sph::rock::elastic_trial(s_old, strain_tensor(strain_increment), constants);
     const double scale = 1e-12 * (trial.cwiseAbs().maxCoeff() + constants.cohesion);
-    out.plastic = (base.stress - trial).cwiseAbs().maxCoeff() > scale;
+    out.plastic        = (base.stress - trial).cwiseAbs().maxCoeff() > scale;
     if (!out.plastic)
     {
       out.tangent = isotropic_tangent(constants.K, constants.G);
@@ -728,19 +746,23 @@ namespace coupling
   ReferenceResult run_reference_cylinder(const CaseParameters &prm, const ReferenceOptions &options)
   {
     if (prm.test != "UCS")
-      throw InputError("reference: Test/Type = " + prm.test + ": the reference models the UCS cylinder only");
+      throw InputError("reference: Test/Type = " + prm.test +
+                       ": the reference models the UCS cylinder only");
     if (prm.rock.model == sph::RockModel::hoek_brown)
-      throw InputError("reference: Rock/Model = hoek-brown: the reference models elastic and Mohr-Coulomb rock "
-                       "(mohr-coulomb, mohr-coulomb-cutoff)");
+      throw InputError(
+        "reference: Rock/Model = hoek-brown: the reference models elastic and Mohr-Coulomb rock "
+        "(mohr-coulomb, mohr-coulomb-cutoff)");
     if (options.degree < 1 || options.degree > 2)
       throw InputError("reference: degree " + std::to_string(options.degree) + ": accepted 1 or 2");
     if (options.n_radial < 1 || options.n_radial > 256)
       throw InputError("reference: mesh " + std::to_string(options.n_radial) +
                        ": elements across the radius must be in [1, 256]");
     if (options.n_increments < 1 || options.n_increments > 100000)
-      throw InputError("reference: increments " + std::to_string(options.n_increments) + ": must be in [1, 100000]");
+      throw InputError("reference: increments " + std::to_string(options.n_increments) +
+                       ": must be in [1, 100000]");
     if (!(options.end_strain > 0 && options.end_strain < 0.2))
-      throw InputError("reference: end strain " + std::to_string(options.end_strain) + ": must be in (0, 0.2)");
+      throw InputError("reference: end strain " + std::to_string(options.end_strain) +
+                       ": must be in (0, 0.2)");
     ReferenceModel model(prm, options);
     return model.run();
   }

@@ -20,8 +20,9 @@ namespace
     return p;
   }
 
-  ReferenceOptions options(const ReferenceInterface interface, const ReferencePlatens platens, const unsigned int mesh,
-                           const unsigned int increments, const double end_strain)
+  ReferenceOptions options(const ReferenceInterface interface, const ReferencePlatens platens,
+                           const unsigned int mesh, const unsigned int increments,
+                           const double end_strain)
   {
     ReferenceOptions o;
     o.interface    = interface;
@@ -35,9 +36,9 @@ namespace
 
 TEST(ReferenceCylinder, ElasticFreeSlipIsHomogeneous)
 {
-  const CaseParameters p = ucs_case(sph::RockModel::elastic);
-  const ReferenceResult r =
-    run_reference_cylinder(p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, 2, 2, 1e-3));
+  const CaseParameters p  = ucs_case(sph::RockModel::elastic);
+  const ReferenceResult r = run_reference_cylinder(
+    p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, 2, 2, 1e-3));
   const double E = p.rock.youngs_modulus, nu = p.rock.poissons_ratio;
   ASSERT_EQ(r.curve.size(), 3u);
   const ReferenceCurveRow &end = r.curve.back();
@@ -60,11 +61,12 @@ TEST(ReferenceCylinder, ElasticFreeSlipIsHomogeneous)
 TEST(ReferenceCylinder, MohrCoulombFreeSlipPeakIsTheClosedForm)
 {
   const CaseParameters p = ucs_case(sph::RockModel::mohr_coulomb);
-  const double ucs = mohr_coulomb_axial_strength(p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
+  const double ucs =
+    mohr_coulomb_axial_strength(p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
   for (const unsigned int mesh : {2u, 4u})
   {
-    const ReferenceResult r =
-      run_reference_cylinder(p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, mesh, 20, 0.006));
+    const ReferenceResult r = run_reference_cylinder(
+      p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, mesh, 20, 0.006));
     // the state stays homogeneous, on the yield surface after the return; Newton stops at 1e-7
     // of the reaction, so the peak is the closed form to 1e-6 on every mesh
     EXPECT_NEAR(r.peak_stress, ucs, 1e-6 * ucs) << "mesh " << mesh;
@@ -79,13 +81,14 @@ TEST(ReferenceCylinder, BondedPlatensConfineTheEnds)
   // Associated flow (psi = phi): with the case's psi = 0 and phi = 64 deg the bonded problem loses
   // uniqueness near its peak (Newton stalls; docs/validation.md), so the comparison is made
   // where the boundary-value problem is well posed.
-  CaseParameters p        = ucs_case(sph::RockModel::mohr_coulomb);
-  p.rock.dilation_angle   = p.rock.friction_angle;
-  const double ucs = mohr_coulomb_axial_strength(p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
-  const ReferenceResult bonded =
-    run_reference_cylinder(p, options(ReferenceInterface::bonded, ReferencePlatens::rigid, 4, 20, 0.004));
-  const ReferenceResult free_slip =
-    run_reference_cylinder(p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, 4, 20, 0.004));
+  CaseParameters p      = ucs_case(sph::RockModel::mohr_coulomb);
+  p.rock.dilation_angle = p.rock.friction_angle;
+  const double ucs =
+    mohr_coulomb_axial_strength(p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
+  const ReferenceResult bonded = run_reference_cylinder(
+    p, options(ReferenceInterface::bonded, ReferencePlatens::rigid, 4, 20, 0.004));
+  const ReferenceResult free_slip = run_reference_cylinder(
+    p, options(ReferenceInterface::free_slip, ReferencePlatens::rigid, 4, 20, 0.004));
   ASSERT_TRUE(bonded.complete()) << bonded.end_reason;
   EXPECT_NEAR(free_slip.peak_stress, ucs, 1e-6 * ucs);
   // end confinement: well above the uniaxial strength (measured: 1.23 x at this strain)
@@ -95,7 +98,8 @@ TEST(ReferenceCylinder, BondedPlatensConfineTheEnds)
   ASSERT_GE(bonded.end_face.size(), 4u);
   EXPECT_GT(bonded.end_face.back().axial_stress, 1.1 * bonded.end_face.front().axial_stress);
   // the bonded face carries a radial compression (lateral strain held at zero: nu / (1 - nu) of
-  // the axial stress for a fully held face, 0.39 here; measured 0.37 at the axis); free slip has none
+  // the axial stress for a fully held face, 0.39 here; measured 0.37 at the axis); free slip has
+  // none
   EXPECT_GT(bonded.end_face.front().radial_stress, 0.3 * bonded.end_face.front().axial_stress);
   for (const auto &s : free_slip.end_face)
     EXPECT_NEAR(s.radial_stress, 0.0, 1e-6 * s.axial_stress);
@@ -106,13 +110,13 @@ TEST(ReferenceCylinder, ElasticSteelPlatensEndFaceConverges)
   // elastic rock between bonded elastic steel platens: the end-face stress at half the load on
   // two meshes; away from the rim (r < 0.6 R, where the corner singularity does not reach) the
   // two agree within 2 % of the mean stress (measured: 0.3 %)
-  const CaseParameters p = ucs_case(sph::RockModel::elastic);
-  const ReferenceResult coarse =
-    run_reference_cylinder(p, options(ReferenceInterface::bonded, ReferencePlatens::elastic, 4, 1, 1e-3));
-  const ReferenceResult fine =
-    run_reference_cylinder(p, options(ReferenceInterface::bonded, ReferencePlatens::elastic, 8, 1, 1e-3));
+  const CaseParameters p       = ucs_case(sph::RockModel::elastic);
+  const ReferenceResult coarse = run_reference_cylinder(
+    p, options(ReferenceInterface::bonded, ReferencePlatens::elastic, 4, 1, 1e-3));
+  const ReferenceResult fine = run_reference_cylinder(
+    p, options(ReferenceInterface::bonded, ReferencePlatens::elastic, 8, 1, 1e-3));
   const double R = 0.5 * p.diameter;
-  const auto at = [](const std::vector<ReferenceStressSample> &s, const double r) {
+  const auto at  = [](const std::vector<ReferenceStressSample> &s, const double r) {
     for (std::size_t i = 1; i < s.size(); ++i)
       if (s[i].r >= r)
       {

@@ -13,9 +13,9 @@ namespace
 
   struct Rock
   {
-    sph::MaterialParameters   m;
+    sph::MaterialParameters m;
     sph::rock::ModelConstants k;
-    sph::rock::Model          model;
+    sph::rock::Model model;
     explicit Rock(const sph::RockModel which)
     {
       CaseParameters p;
@@ -30,14 +30,15 @@ namespace
 TEST(ReferencePoint, ElasticTangentIsIsotropic)
 {
   const Rock rock(sph::RockModel::mohr_coulomb);
-  const ReferencePointUpdate u =
-    reference_point_update(rock.model, rock.k, Voigt4{}, sph::MaterialState{}, Voigt4{{-1e-4, -2e-4, 3e-5, 1e-5}});
+  const ReferencePointUpdate u = reference_point_update(
+    rock.model, rock.k, Voigt4{}, sph::MaterialState{}, Voigt4{{-1e-4, -2e-4, 3e-5, 1e-5}});
   EXPECT_FALSE(u.plastic);
   const double lambda = rock.k.K - 2.0 / 3.0 * rock.k.G;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
     {
-      const double expected = i == 3 || j == 3 ? (i == j ? rock.k.G : 0.0) : lambda + (i == j ? 2 * rock.k.G : 0.0);
+      const double expected =
+        i == 3 || j == 3 ? (i == j ? rock.k.G : 0.0) : lambda + (i == j ? 2 * rock.k.G : 0.0);
       EXPECT_NEAR(u.tangent[i][j], expected, 1e-12 * rock.k.K) << i << ", " << j;
     }
   // engineering shear: sigma_rz = G gamma_rz
@@ -49,13 +50,16 @@ TEST(ReferencePoint, PlasticUpdateLiesOnTheSurfaceAndTheTangentPredictsIt)
   const Rock rock(sph::RockModel::mohr_coulomb);
   // uniaxial compression well past yield (UCS / E = 2.9e-3), with some shear
   const Voigt4 de{{1.4e-3, -5e-3, 1.3e-3, 1e-3}};
-  const ReferencePointUpdate u = reference_point_update(rock.model, rock.k, Voigt4{}, sph::MaterialState{}, de);
+  const ReferencePointUpdate u =
+    reference_point_update(rock.model, rock.k, Voigt4{}, sph::MaterialState{}, de);
   ASSERT_TRUE(u.plastic);
   // on the Mohr-Coulomb surface (principal stresses of the r-z block and theta)
-  const double c = 0.5 * (u.stress[0] + u.stress[1]), d = std::hypot(0.5 * (u.stress[0] - u.stress[1]), u.stress[3]);
-  double s[3] = {c + d, c - d, u.stress[2]};
+  const double c = 0.5 * (u.stress[0] + u.stress[1]),
+               d = std::hypot(0.5 * (u.stress[0] - u.stress[1]), u.stress[3]);
+  double s[3]    = {c + d, c - d, u.stress[2]};
   std::sort(s, s + 3);
-  const double f = s[2] * (1 + rock.k.sin_phi) - s[0] * (1 - rock.k.sin_phi) - 2 * rock.m.cohesion * rock.k.cos_phi;
+  const double f = s[2] * (1 + rock.k.sin_phi) - s[0] * (1 - rock.k.sin_phi) -
+                   2 * rock.m.cohesion * rock.k.cos_phi;
   EXPECT_NEAR(f, 0.0, 1e-9 * rock.m.cohesion);
   // the tangent predicts a small further strain to first order: the error of the prediction is
   // second order, below 1e-3 of the change for a step of 1e-6 (the update's curvature scale is
@@ -64,7 +68,8 @@ TEST(ReferencePoint, PlasticUpdateLiesOnTheSurfaceAndTheTangentPredictsIt)
   Voigt4 de2 = de;
   for (int k = 0; k < 4; ++k)
     de2[k] += step[k];
-  const ReferencePointUpdate v = reference_point_update(rock.model, rock.k, Voigt4{}, sph::MaterialState{}, de2);
+  const ReferencePointUpdate v =
+    reference_point_update(rock.model, rock.k, Voigt4{}, sph::MaterialState{}, de2);
   double change = 0, error = 0;
   for (int i = 0; i < 4; ++i)
   {
