@@ -9,6 +9,7 @@
 #include <app/cli.h>
 #include <app/diagnose_command.h>
 #include <app/paths.h>
+#include <app/reference_command.h>
 #include <app/run_command.h>
 #include <app/study.h>
 #include <coupling/errors.h>
@@ -39,6 +40,8 @@ namespace
      &app::study_main},
     {"diagnose", "what the simulation gets wrong on measured data, the cause and the gain",
      &app::diagnose_help, &app::diagnose_main},
+    {"reference", "implicit axisymmetric FE reference of a UCS case: curve, peak, end-face stress",
+     &app::reference_help, &app::reference_main},
   };
 
   std::vector<std::string> command_names()
