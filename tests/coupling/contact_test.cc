@@ -264,8 +264,8 @@ TEST(ContactKinematic, ForcesOnADeformableFaceCancelAndCloseTheGap)
   prm.method = ContactMethod::kinematic;
   prm.radius = 5e-4;
   const Patch p = particle_patch(
-    6, [](int i, int j) { return std::array<double, 3>{0.005 + 0.006 * i, 0.004 + 0.0065 * j, 4.9e-4}; },
-    [](int, int) { return std::array<double, 3>{0.01, -0.02, -0.5}; });
+    6, [](int i, int j) { return std::array<double, 3>{{0.005 + 0.006 * i, 0.004 + 0.0065 * j, 4.9e-4}}; },
+    [](int, int) { return std::array<double, 3>{{0.01, -0.02, -0.5}}; });
   PenaltyContact contact(prm, p.m.size());
   std::vector<double> fp(p.x.size(), 0.0), fn(s.position.size(), 0.0);
   const double dt = 1e-6;
