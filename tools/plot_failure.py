@@ -111,17 +111,16 @@ def main(argv):
         if onset:
             first = max(float(np.max(damage[onset])), 1e-12)
             panels.insert(0, (onset, f"damage at onset / {first:.2g}", first))
-        rows = 2 if mode is not None else 1
-        fig, axes = plt.subplots(rows, len(panels), figsize=(4.2 * len(panels), 4.2 * rows),
-                                 dpi=150, squeeze=False)
-        fig.subplots_adjust(wspace=0.35, hspace=0.35)
+        # the failure modes in a last panel of the same row
+        cols = len(panels) + (1 if mode is not None else 0)
+        fig, axes = plt.subplots(1, cols, figsize=(4.2 * cols, 4.2), dpi=150, squeeze=False)
+        fig.subplots_adjust(wspace=0.35)
         for ax, (k, what, scale) in zip(axes[0], panels):
             im = section(ax, mid, 0, 2, k, f"{what}, t = {times[k] * 1e3:.3f} ms\n"
                                            "largest through the thickness; load along z", scale)
-        mode_sections = [(axes[1][-1], mid, 0, 2, "failure mode at the end\n"
-                          "of the most damaged particle through the thickness")] if rows == 2 else []
-        for ax in axes[1][:-1] if rows == 2 else []:
-            ax.axis("off")
+        mode_sections = [(axes[0][-1], mid, 0, 2, "failure mode at the end, of the most\n"
+                          "damaged particle through the thickness")] if mode is not None else []
+        axes = [axes[0][:len(panels)]]
     else:
         xz = layer(x0[:, 1] - centre[1], spacing)
         yz = layer(x0[:, 0] - centre[0], spacing)
