@@ -236,7 +236,7 @@ namespace app
       std::size_t n_particles;
       std::vector<MeshInfo> meshes;
       bool stress_measures = true; ///< has von_mises and mean stress (a copied older file may not)
-      bool failure_modes = true;   ///< has failure_mode (a copied older file may not)
+      bool failure_modes   = true; ///< has failure_mode (a copied older file may not)
     };
 
     std::string path;
@@ -514,7 +514,8 @@ namespace app
       if (g >= 0)
         H5Gclose(g);
       info.stress_measures = H5Lexists(old, (std::string(from) + "/particles/von_mises").c_str(), H5P_DEFAULT) > 0;
-      info.failure_modes = H5Lexists(old, (std::string(from) + "/particles/failure_mode").c_str(), H5P_DEFAULT) > 0;
+      info.failure_modes =
+        H5Lexists(old, (std::string(from) + "/particles/failure_mode").c_str(), H5P_DEFAULT) > 0;
       if (H5Ocopy(old, from, m.file, to, H5P_DEFAULT, H5P_DEFAULT) < 0)
         break;
       m.snapshots.push_back(std::move(info));
@@ -585,11 +586,10 @@ namespace app
             << "</Attribute>\n"
             << "   <Attribute Name=\"mean_stress_compression_positive\" AttributeType=\"Scalar\" Center=\"Node\">"
             << item(p + "mean_stress_compression_positive", n, 1) << "</Attribute>\n";
-        x
-          << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
+        x << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
           << item(p + "plastic_strain", n, 1) << "</Attribute>\n"
-          << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">" << item(p + "damage", n, 1)
-          << "</Attribute>\n";
+          << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">"
+          << item(p + "damage", n, 1) << "</Attribute>\n";
         if (s.failure_modes)
           x << "   <Attribute Name=\"failure_mode\" AttributeType=\"Scalar\" Center=\"Node\">"
             << item(p + "failure_mode", n, 1, "Int", 4) << "</Attribute>\n";

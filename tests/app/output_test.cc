@@ -382,9 +382,10 @@ TEST(Output, ResultsH5StressOrderDerivedFieldsUnitsAndVersion)
   EXPECT_NE(x.find("<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Node\">"), std::string::npos) << x;
   EXPECT_NE(x.find("<Attribute Name=\"mean_stress_compression_positive\" AttributeType=\"Scalar\""), std::string::npos)
     << x;
-  EXPECT_NE(x.find("<Attribute Name=\"failure_mode\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
-                   "Dimensions=\"2\" NumberType=\"Int\" Precision=\"4\""),
-            std::string::npos)
+  EXPECT_NE(
+    x.find("<Attribute Name=\"failure_mode\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
+           "Dimensions=\"2\" NumberType=\"Int\" Precision=\"4\""),
+    std::string::npos)
     << x;
   EXPECT_NE(x.find("NodesPerElement=\"1\"><DataItem Dimensions=\"2\" NumberType=\"UInt\" Precision=\"4\" "
                    "Format=\"HDF\">results.h5:/particle_vertices/2</DataItem></Topology>"),

@@ -407,8 +407,9 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
 TEST(BadInput, ACrackBandThatWouldSnapBackIsRefused)
 {
   Sandbox box;
-  const Result r = run_cosim(box, {"run", ucs_case, "--quiet", "--set", "Rock/Softening law=fracture energy",
-                                   "--set", "Rock/Fracture energy=1"});
+  const Result r =
+    run_cosim(box, {"run", ucs_case, "--quiet", "--set", "Rock/Softening law=fracture energy",
+                    "--set", "Rock/Fracture energy=1"});
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("Rock/Fracture energy"), std::string::npos) << r.err;

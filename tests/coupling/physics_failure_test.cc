@@ -136,8 +136,8 @@ TEST(CoupledFailureMode, UcsFailsInShearAndTheBtsSplitIsTensile)
     CaseParameters p     = m1("UCS");
     p.sph.spacing        = 5e-3;
     p.loading.end_strain = 0.006;
-    LastSnapshot  last;
-    const Summary s      = run_case(p, last);
+    LastSnapshot last;
+    const Summary s = run_case(p, last);
     ASSERT_EQ(last.particles.failure_mode.size(), last.particles.n);
     const double tensile = extra(s, "failure_mode_tensile"), shear = extra(s, "failure_mode_shear"),
                  crushed = extra(s, "failure_mode_crushed");
@@ -155,10 +155,10 @@ TEST(CoupledFailureMode, UcsFailsInShearAndTheBtsSplitIsTensile)
     p.length             = 0.025;
     p.sph.spacing        = 2.5e-3;
     p.loading.end_strain = 0.004;
-    LastSnapshot  last;
+    LastSnapshot last;
     run_case(p, last);
-    const double D = 0.05;
-    const auto central = mode_counts(last.particles, [D](double x, double z) {
+    const double D      = 0.05;
+    const auto central  = mode_counts(last.particles, [D](double x, double z) {
       return std::abs(x) < 0.1 * D && std::abs(z - 0.5 * D) < 0.3 * D;
     });
     const double failed = central[1] + central[2] + central[3];
