@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Pictures of where a UCS / CTCS cylinder or a BTS disc fails: damage in sections through the
 specimen (reference positions, one lattice layer thick), where the damage started (the first
-snapshot holding a damaged particle) and at the end of the run.
+snapshot holding a damaged particle) and at the end of the run; below, in the same sections at the
+end, how each particle failed (the failure_mode field: one colour per mode, counts in the legend).
 
 usage: plot_failure.py RESULTS_H5 TEST OUT_PNG
 UCS/CTCS: the vertical sections x-z and y-z through the axis and the mid-height section, at the end;
@@ -36,6 +37,26 @@ def grid(a, b, c, spacing):
     return img, extent
 
 
+# failure_mode values (sph::FailureMode) and their colours
+MODES = [(0, "none", "#e6e6e6"), (1, "tensile", "#2b6cb0"), (2, "shear", "#dd8a1e"),
+         (3, "crushed", "#9b2226")]
+
+
+def grid_mode(a, b, mode, damage, spacing):
+    """Failure modes at cell-centred (a, b) as an image (NaN outside); where several particles
+    share a cell (a projection), the mode of the most damaged one."""
+    import numpy as np
+
+    order = np.argsort(damage, kind="stable")  # the most damaged written last
+    ia = np.rint((a - a.min()) / spacing).astype(int)[order]
+    ib = np.rint((b - b.min()) / spacing).astype(int)[order]
+    img = np.full((ib.max() + 1, ia.max() + 1), np.nan)
+    img[ib, ia] = mode[order]
+    h = 0.5 * spacing
+    extent = [(a.min() - h) * 1e3, (a.max() + h) * 1e3, (b.min() - h) * 1e3, (b.max() + h) * 1e3]
+    return img, extent
+
+
 def main(argv):
     if len(argv) != 4:
         print("usage: plot_failure.py RESULTS_H5 TEST OUT_PNG", file=sys.stderr)
@@ -60,6 +81,8 @@ def main(argv):
             return 2
         x0 = snaps[keys[0]]["particles/position"][:] - snaps[keys[0]]["particles/displacement"][:]
         damage = {k: snaps[k]["particles/damage"][:] for k in keys}
+        last_particles = snaps[keys[-1]]["particles"]
+        mode = last_particles["failure_mode"][:] if "failure_mode" in last_particles else None
         times = {k: snaps[k].attrs.get("time_s", float("nan")) for k in keys}
     last = keys[-1]
     onset = next((k for k in keys if np.any(damage[k] > 0)), None)
@@ -88,24 +111,53 @@ def main(argv):
         if onset:
             first = max(float(np.max(damage[onset])), 1e-12)
             panels.insert(0, (onset, f"damage at onset / {first:.2g}", first))
-        fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4.2), dpi=150,
-                                 squeeze=False)
+        # the failure modes in a last panel of the same row
+        cols = len(panels) + (1 if mode is not None else 0)
+        fig, axes = plt.subplots(1, cols, figsize=(4.2 * cols, 4.2), dpi=150, squeeze=False)
         fig.subplots_adjust(wspace=0.35)
         for ax, (k, what, scale) in zip(axes[0], panels):
             im = section(ax, mid, 0, 2, k, f"{what}, t = {times[k] * 1e3:.3f} ms\n"
                                            "largest through the thickness; load along z", scale)
+        mode_sections = [(axes[0][-1], mid, 0, 2, "failure mode at the end, of the most\n"
+                          "damaged particle through the thickness")] if mode is not None else []
+        axes = [axes[0][:len(panels)]]
     else:
         xz = layer(x0[:, 1] - centre[1], spacing)
         yz = layer(x0[:, 0] - centre[0], spacing)
         xy = layer(x0[:, 2] - centre[2], spacing)
-        fig, axes = plt.subplots(1, 3, figsize=(11, 5), dpi=150, squeeze=False,
+        rows = 2 if mode is not None else 1
+        fig, axes = plt.subplots(rows, 3, figsize=(11, 5 * rows), dpi=150, squeeze=False,
                                  gridspec_kw={"width_ratios": [1, 1, 1.6]})
-        fig.subplots_adjust(wspace=0.45)
+        fig.subplots_adjust(wspace=0.45, hspace=0.3)
         t = f"t = {times[last] * 1e3:.3f} ms"
         im = section(axes[0][0], xz, 0, 2, last, f"x-z section through the axis\n{t}")
         section(axes[0][1], yz, 1, 2, last, f"y-z section through the axis\n{t}")
         section(axes[0][2], xy, 0, 1, last, f"mid-height section\n{t}")
+        mode_sections = [(axes[1][0], xz, 0, 2, "failure mode, x-z section"),
+                         (axes[1][1], yz, 1, 2, "failure mode, y-z section"),
+                         (axes[1][2], xy, 0, 1, "failure mode, mid-height")] if rows == 2 else []
     fig.colorbar(im, ax=list(axes[0]), shrink=0.8, label="damage (1 = residual strength)")
+    if mode_sections:
+        from matplotlib.colors import ListedColormap, BoundaryNorm
+        from matplotlib.patches import Patch
+
+        mcmap = ListedColormap([c for _, _, c in MODES])
+        mcmap.set_bad("white")
+        norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], mcmap.N)
+        for ax, mask, a, b, title in mode_sections:
+            img, extent = grid_mode(x0[mask, a], x0[mask, b], mode[mask].astype(float),
+                                    damage[last][mask], spacing)
+            ax.imshow(img, origin="lower", extent=extent, cmap=mcmap, norm=norm,
+                      interpolation="nearest")
+            ax.set_title(title, fontsize=9)
+            ax.set_xlabel("xyz"[a] + " [mm]")
+            ax.set_ylabel("xyz"[b] + " [mm]")
+            ax.set_aspect("equal")
+        counts = {v: int(np.sum(mode == v)) for v, _, _ in MODES}
+        handles = [Patch(facecolor=c, edgecolor="black", linewidth=0.5,
+                         label=f"{name} ({counts[v]} particles)") for v, name, c in MODES]
+        mode_sections[-1][0].legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                                    fontsize=8, title="failure mode", title_fontsize=8)
     title = f"{test}: failure pattern"
     summary = os.path.join(os.path.dirname(os.path.abspath(path)), "summary.json")
     if os.path.exists(summary):

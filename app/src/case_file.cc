@@ -12,6 +12,7 @@
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
 #include <diagnose/text_input.h>
+#include <sph/rock_models.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -595,6 +596,27 @@ namespace app
       // --- checks across sections
       if (p.test == "CTCS" && p.confining_pressure == 0)
         result.warnings.push_back("Test/Confining pressure is 0 in a CTCS case: this is a UCS test");
+      if (p.rock.softening_law == sph::SofteningLaw::fracture_energy &&
+          p.rock.model != sph::RockModel::elastic)
+      {
+        // the shear counterpart of the snap-back refusal of Rock/Fracture energy: a warning, for
+        // with basalt's G_II and strength it holds at every practical spacing (M1: bands under
+        // 1.5 mm); the tensile crack, which the law is for, is refused instead
+        const double ucs   = sph::rock::make_model_constants(p.rock).crush_pressure;
+        const double g2    = p.rock.fracture_energy * p.rock.shear_fracture_energy_ratio;
+        const double band  = sph::rock::crack_band_width(p.sph.spacing, p.sph.cslh);
+        const double h_max = 2 * p.rock.youngs_modulus * g2 / (ucs * ucs);
+        if (band >= h_max)
+          result.warnings.push_back("Rock/Shear fracture energy ratio: shear softening snaps back "
+                                    "at this spacing (crack band " +
+                                    keys::format(band) +
+                                    " m, wider than 2 E G_II / UCS^2 = " + keys::format(h_max) +
+                                    " m): a particle failing in compression loses its strength "
+                                    "within a step and dissipates more than "
+                                    "G_II; G_II above " +
+                                    keys::format(ucs * ucs * band / (2 * p.rock.youngs_modulus)) +
+                                    " J/m^2 or a finer spacing avoids it");
+      }
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       const double smallest = std::min(p.diameter, p.length);
       if (cutting)

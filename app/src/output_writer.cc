@@ -314,6 +314,7 @@ namespace app
       std::size_t n_particles;
       std::vector<MeshInfo> meshes;
       bool stress_measures = true; ///< has von_mises and mean stress (a copied older file may not)
+      bool failure_modes   = true; ///< has failure_mode (a copied older file may not)
     };
 
     std::string path;
@@ -406,6 +407,12 @@ namespace app
 
   namespace
   {
+    /// The "meaning" attribute of the failure_mode dataset (sph::FailureMode).
+    const std::string failure_mode_meaning =
+      "0 none (never yielded), 1 tensile (tension cut-off, or failure plane in tension), "
+      "2 shear (Mohr-Coulomb, failure plane in compression), 3 crushed (shear under a mean "
+      "compression of at least the uniaxial compressive strength)";
+
     /// The XDMF Tensor6 order xx,xy,xz,yy,yz,zz of ParticleSnapshot::stress (xx,yy,zz,yz,xz,xy).
     std::vector<double> stress_in_xdmf_order(const std::vector<double> &stress)
     {
@@ -501,6 +508,16 @@ namespace app
               H5T_NATIVE_DOUBLE, "Pa");
     m.dataset(pg, "plastic_strain", filled(particles.plastic_strain, 1), 1, H5T_NATIVE_DOUBLE, "1");
     m.dataset(pg, "damage", filled(particles.damage, 1), 1, H5T_NATIVE_DOUBLE, "1");
+    if (!particles.failure_mode.empty() && particles.failure_mode.size() != n)
+      throw std::logic_error("ParticleSnapshot::failure_mode has the wrong size");
+    m.dataset(pg, "failure_mode",
+              particles.failure_mode.empty() ? std::vector<int>(n, 0) : particles.failure_mode, 1,
+              H5T_NATIVE_INT, "1");
+    {
+      const hid_t set = H5Dopen2(pg, "failure_mode", H5P_DEFAULT);
+      m.attribute(set, "meaning", failure_mode_meaning);
+      H5Dclose(set);
+    }
     H5Gclose(pg);
     const hid_t mg = m.group(g, "meshes");
     for (const auto &mesh : meshes)
@@ -575,6 +592,8 @@ namespace app
       if (g >= 0)
         H5Gclose(g);
       info.stress_measures = H5Lexists(old, (std::string(from) + "/particles/von_mises").c_str(), H5P_DEFAULT) > 0;
+      info.failure_modes =
+        H5Lexists(old, (std::string(from) + "/particles/failure_mode").c_str(), H5P_DEFAULT) > 0;
       if (H5Ocopy(old, from, m.file, to, H5P_DEFAULT, H5P_DEFAULT) < 0)
         break;
       m.snapshots.push_back(std::move(info));
@@ -645,12 +664,14 @@ namespace app
             << "</Attribute>\n"
             << "   <Attribute Name=\"mean_stress_compression_positive\" AttributeType=\"Scalar\" Center=\"Node\">"
             << item(p + "mean_stress_compression_positive", n, 1) << "</Attribute>\n";
-        x
-          << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
+        x << "   <Attribute Name=\"plastic_strain\" AttributeType=\"Scalar\" Center=\"Node\">"
           << item(p + "plastic_strain", n, 1) << "</Attribute>\n"
-          << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">" << item(p + "damage", n, 1)
-          << "</Attribute>\n"
-          << "  </Grid>\n";
+          << "   <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\">"
+          << item(p + "damage", n, 1) << "</Attribute>\n";
+        if (s.failure_modes)
+          x << "   <Attribute Name=\"failure_mode\" AttributeType=\"Scalar\" Center=\"Node\">"
+            << item(p + "failure_mode", n, 1, "Int", 4) << "</Attribute>\n";
+        x << "  </Grid>\n";
       }
       for (const auto &mesh : s.meshes)
       {

@@ -5,6 +5,7 @@
 
 #include <diagnose/calibrate.h>
 #include <diagnose/material_table.h>
+#include <sph/rock_models.h>
 
 #include <cmath>
 
@@ -78,6 +79,45 @@ namespace app::keys
     });
     s.add<double>("Softening strain", m.softening_strain, "plastic strain to residual strength [-]",
                   [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    s.add_enum("Softening law", m.softening_law, "strain|fracture energy",
+               {sph::SofteningLaw::strain, sph::SofteningLaw::fracture_energy},
+               "how the strength softens after its peak: strain (linearly in the equivalent "
+               "plastic strain to "
+               "the residual at Rock/Softening strain) or fracture energy (crack band: each "
+               "particle dissipates "
+               "Rock/Fracture energy per unit crack area over a band two particle spacings wide "
+               "(at CSLH 1.2), so that results do "
+               "not move with SPH/Particle spacing); Rock/Softening strain is the strain law's, "
+               "Rock/Fracture "
+               "energy and Rock/Shear fracture energy ratio the crack band's");
+    s.add<double>(
+      "Fracture energy", m.fracture_energy,
+      "mode I fracture energy G_I [J/m^2] (Rock/Softening law = fracture energy); 100: basalt, "
+      "K_Ic = 2.7-3.8 MPa m^0.5 (Balme et al. 2004) gives K_Ic^2 (1 - nu^2)/E = 69-137 J/m^2",
+      [](double v) { return v > 0 && v < 1e6; }, "must be in (0, 1e6) J/m^2");
+    s.check("Fracture energy", [&p]() {
+      const sph::MaterialParameters &r = p.rock;
+      if (r.softening_law != sph::SofteningLaw::fracture_energy ||
+          r.model == sph::RockModel::elastic)
+        return std::string();
+      const double h_max = sph::rock::max_crack_band_width(r);
+      const double band  = sph::rock::crack_band_width(p.sph.spacing, p.sph.cslh);
+      if (band < h_max)
+        return std::string();
+      const double ft = sph::rock::uniaxial_tensile_strength(r);
+      return "the softening would snap back: the crack band (" + format(band) +
+             " m at SPH/Particle spacing = " + format(p.sph.spacing) +
+             " m) must be narrower than 2 E G_I / f_t^2 = " + format(h_max) +
+             " m (f_t = " + format(ft) + " Pa); needs G_I > f_t^2 h / (2 E) = " +
+             format(ft * ft * band / (2 * r.youngs_modulus)) + " J/m^2, or a finer spacing";
+    });
+    s.add<double>(
+      "Shear fracture energy ratio", m.shear_fracture_energy_ratio,
+      "G_II / G_I [-]: the shear (mode II) fracture energy of Mohr-Coulomb shear and crushing "
+      "returns "
+      "over Rock/Fracture energy; 6.25 = 2.5^2, rock's K_IIc being 2-3 K_Ic (Rao 1999; Backers et "
+      "al. 2002)",
+      [](double v) { return v >= 1 && v <= 100; }, "must be in [1, 100]");
     s.add<double>("Residual fraction", m.residual_fraction, "residual / peak strength [-]",
                   [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1]");
     s.add_optional("Residual friction angle", o.residual_friction_angle_deg,

@@ -125,6 +125,7 @@ namespace coupling
       s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
       s.plastic_strain.push_back(body.plastic_strain(i));
       s.damage.push_back(body.damage(i));
+      s.failure_mode.push_back(static_cast<int>(body.history(i).failure_mode));
     }
     return s;
   }

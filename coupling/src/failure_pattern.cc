@@ -89,6 +89,14 @@ namespace coupling
       szz += z * z;
     }
     s.extra.emplace_back("damaged_volume_fraction", v_failed / v_all);
+    // particles per failure mode (sph::FailureMode)
+    double count[4] = {0, 0, 0, 0};
+    for (unsigned int i = 0; i < body.n_particles(); ++i)
+      count[static_cast<int>(body.history(i).failure_mode)] += 1;
+    s.extra.emplace_back("failure_mode_none", count[0]);
+    s.extra.emplace_back("failure_mode_tensile", count[1]);
+    s.extra.emplace_back("failure_mode_shear", count[2]);
+    s.extra.emplace_back("failure_mode_crushed", count[3]);
     if (disc_)
     {
       const double var_x = n > 1 ? sxx / n - (sx / n) * (sx / n) : 0.0;

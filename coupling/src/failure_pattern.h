@@ -34,7 +34,8 @@ namespace coupling
     /// for a cylinder), failure_onset_height_ratio (cylinder: mean |z - centre| / half length),
     /// damaged_volume_fraction (damage >= 0.5 at the end) and, for BTS, crack_alignment (standard
     /// deviation along the loaded diameter / across it, of the particles with damage >= 0.5).
-    /// NaN where nothing was damaged.
+    /// NaN where nothing was damaged. Then failure_mode_none, _tensile, _shear and _crushed:
+    /// the number of particles that failed each way (sph::FailureMode) at the end.
     void report(const sph::Body<3> &body, Summary &s) const;
 
     /// The watch's state, for checkpoints.

@@ -147,11 +147,24 @@ namespace sph
             "MaterialParameters::closure_modulus_ratio must be in (0, 1] (1: no crack closure)");
     require(material_.closure_modulus_ratio == 1 || material_.closure_stress > 0,
             "MaterialParameters::closure_stress must be > 0 [Pa] with crack closure");
+    if (material_.softening_law == SofteningLaw::fracture_energy &&
+        material_.model != RockModel::elastic)
+      {
+        require(material_.fracture_energy > 0 && material_.shear_fracture_energy_ratio > 0,
+                "MaterialParameters::fracture_energy and shear_fracture_energy_ratio must be > 0");
+        const double h_max = rock::max_crack_band_width(material_);
+        const double band  = rock::crack_band_width(prm_.spacing, prm_.cslh);
+        require(band < h_max,
+                "the crack band (" + std::to_string(band) + " m at particle spacing " +
+                  std::to_string(prm_.spacing) + " m) must be narrower than 2 E G_I / f_t^2 = " +
+                  std::to_string(h_max) +
+                  " m, or the softening snaps back: raise the fracture energy or refine the spacing");
+      }
     require(positions.size() == volumes.size(), "positions and volumes differ in length");
     require(!positions.empty(), "no particles");
 
     n_threads_ = prm_.n_threads > 0 ? prm_.n_threads : omp_get_max_threads();
-    rock_      = rock::make_model_constants(material_);
+    rock_      = rock::make_model_constants(material_, rock::crack_band_width(prm_.spacing, prm_.cslh));
     model_     = rock::make_model_choice(material_);
     wave_speed_ = std::sqrt((rock_.K + 4.0 / 3.0 * rock_.G) / material_.density);
 

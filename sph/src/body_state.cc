@@ -104,15 +104,17 @@ namespace sph
     for_each_state_field(*this, prefix,
                          [&out](const std::string &name, const auto &field) { pack(out, name, field); });
     const std::size_t   n = p_.size();
-    std::vector<double> plastic(n), damage(n), constrained(n);
+    std::vector<double> plastic(n), damage(n), mode(n), constrained(n);
     for (std::size_t i = 0; i < n; ++i)
     {
       plastic[i]     = p_.history[i].plastic_strain;
       damage[i]      = p_.history[i].damage;
+      mode[i]        = static_cast<double>(p_.history[i].failure_mode);
       constrained[i] = constrained_[i];
     }
     out[prefix + "plastic_strain"] = std::move(plastic);
     out[prefix + "damage"]         = std::move(damage);
+    out[prefix + "failure_mode"]   = std::move(mode);
     out[prefix + "constrained"]    = std::move(constrained);
   }
 
@@ -124,11 +126,16 @@ namespace sph
     const std::size_t n       = p_.size();
     const auto       &plastic = find(in, prefix + "plastic_strain", n);
     const auto       &damage  = find(in, prefix + "damage", n);
+    const auto       &mode    = find(in, prefix + "failure_mode", n);
     const auto       &constr  = find(in, prefix + "constrained", n);
     for (std::size_t i = 0; i < n; ++i)
     {
+      if (!(mode[i] >= 0 && mode[i] <= 3))
+        throw std::invalid_argument("body state: '" + prefix + "failure_mode' holds " +
+                                    std::to_string(mode[i]) + ", expected 0-3");
       p_.history[i].plastic_strain = plastic[i];
       p_.history[i].damage         = damage[i];
+      p_.history[i].failure_mode   = static_cast<FailureMode>(static_cast<int>(mode[i]));
       constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
     }
   }

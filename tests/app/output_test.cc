@@ -300,6 +300,7 @@ TEST(Output, ResultsH5StressOrderDerivedFieldsUnitsAndVersion)
   p.position = {0, 0, 0, 1e-3, 0, 0};
   // particle 0: xx,yy,zz,yz,xz,xy = 1..6 MPa (every component its own value); particle 1: uniaxial
   p.stress = {1e6, 2e6, 3e6, 4e6, 5e6, 6e6, 0, 0, -100e6, 0, 0, 0};
+  p.failure_mode = {1, 3}; // tensile, crushed
   coupling::MeshSnapshot m;
   m.name      = "platen_top";
   m.position  = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
@@ -357,6 +358,22 @@ TEST(Output, ResultsH5StressOrderDerivedFieldsUnitsAndVersion)
   const hid_t d = H5Dopen2(f, "/snapshots/000000/particles/stress", H5P_DEFAULT);
   EXPECT_EQ(string_attribute(d, "components"), "xx,xy,xz,yy,yz,zz");
   H5Dclose(d);
+  // the failure mode: integers, their meaning on the dataset
+  {
+    const hid_t fm = H5Dopen2(f, "/snapshots/000000/particles/failure_mode", H5P_DEFAULT);
+    ASSERT_GE(fm, 0) << "no failure_mode dataset";
+    const hid_t type = H5Dget_type(fm);
+    EXPECT_EQ(H5Tget_class(type), H5T_INTEGER);
+    H5Tclose(type);
+    int values[2] = {-1, -1};
+    ASSERT_GE(H5Dread(fm, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
+    EXPECT_EQ(values[0], 1);
+    EXPECT_EQ(values[1], 3);
+    const std::string meaning = string_attribute(fm, "meaning");
+    for (const char *word : {"0 none", "1 tensile", "2 shear", "3 crushed"})
+      EXPECT_NE(meaning.find(word), std::string::npos) << meaning;
+    H5Dclose(fm);
+  }
   H5Fclose(f);
 
   // the XDMF: the stress as Tensor6, the derived fields as scalars, an explicit Polyvertex
@@ -364,6 +381,11 @@ TEST(Output, ResultsH5StressOrderDerivedFieldsUnitsAndVersion)
   EXPECT_NE(x.find("AttributeType=\"Tensor6\" Center=\"Node\"><DataItem Dimensions=\"2 6\""), std::string::npos) << x;
   EXPECT_NE(x.find("<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Node\">"), std::string::npos) << x;
   EXPECT_NE(x.find("<Attribute Name=\"mean_stress_compression_positive\" AttributeType=\"Scalar\""), std::string::npos)
+    << x;
+  EXPECT_NE(
+    x.find("<Attribute Name=\"failure_mode\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem "
+           "Dimensions=\"2\" NumberType=\"Int\" Precision=\"4\""),
+    std::string::npos)
     << x;
   EXPECT_NE(x.find("NodesPerElement=\"1\"><DataItem Dimensions=\"2\" NumberType=\"UInt\" Precision=\"4\" "
                    "Format=\"HDF\">results.h5:/particle_vertices/2</DataItem></Topology>"),

@@ -371,6 +371,9 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
     {"Rock/Youngs modulus=-1", {"Rock/Youngs modulus"}},
     {"Rock/Softening strain=1", {"Rock/Softening strain", "(0, 1)"}},
     {"Rock/Residual fraction=1.5", {"Rock/Residual fraction", "[0, 1]"}},
+    {"Rock/Softening law=energy", {"Rock/Softening law", "fracture energy"}},
+    {"Rock/Fracture energy=0", {"Rock/Fracture energy", "(0, 1e6) J/m^2"}},
+    {"Rock/Shear fracture energy ratio=0.5", {"Rock/Shear fracture energy ratio", "[1, 100]"}},
     {"SPH/CSLH=3", {"SPH/CSLH"}},
     {"SPH/Hourglass coefficient=2", {"SPH/Hourglass coefficient", "[0, 1]"}},
     {"SPH/Threads=-1", {"SPH/Threads", "[0, 4096]"}},
@@ -397,4 +400,19 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
       EXPECT_NE(r.err.find(e), std::string::npos) << "message lacks '" << e << "': " << r.err;
     EXPECT_TRUE(listing(box.dir()).empty()) << "bad input must write nothing";
   }
+}
+
+// A crack band too wide for its fracture energy would snap back: refused, naming the key and the
+// energy that the spacing needs (M1: f_t = 15.4 MPa, E = 97 GPa, band 5 mm: 6.1 J/m^2).
+TEST(BadInput, ACrackBandThatWouldSnapBackIsRefused)
+{
+  Sandbox box;
+  const Result r =
+    run_cosim(box, {"run", ucs_case, "--quiet", "--set", "Rock/Softening law=fracture energy",
+                    "--set", "Rock/Fracture energy=1"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("Rock/Fracture energy"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("snap back"), std::string::npos) << r.err;
+  EXPECT_TRUE(listing(box.dir()).empty()) << "bad input must write nothing";
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -94,4 +95,74 @@ TEST(CoupledUcs, StrengthScatterIsHonouredAndWeakensTheSpecimen)
   const Summary other  = run_case(p, quiet);
   EXPECT_NE(other.peak_stress, scattered.peak_stress);
   EXPECT_NEAR(other.peak_stress / scattered.peak_stress, 1.0, 0.1);
+}
+
+namespace
+{
+  // Keeps the last particle snapshot of a run.
+  struct LastSnapshot : RunObserver
+  {
+    ParticleSnapshot particles;
+    void snapshot(double, const ParticleSnapshot &p, const std::vector<MeshSnapshot> &) override
+    {
+      particles = p;
+    }
+  };
+
+  // particles per failure mode (0 none, 1 tensile, 2 shear, 3 crushed) of those for which
+  // `where(x, z)` holds (x, z: reference position [m])
+  template <typename Where>
+  std::array<double, 4> mode_counts(const ParticleSnapshot &s, Where where)
+  {
+    std::array<double, 4> n{0, 0, 0, 0};
+    for (std::size_t i = 0; i < s.n; ++i)
+    {
+      const double x = s.position[3 * i] - s.displacement[3 * i];
+      const double z = s.position[3 * i + 2] - s.displacement[3 * i + 2];
+      if (where(x, z))
+        n[s.failure_mode[i]] += 1;
+    }
+    return n;
+  }
+} // namespace
+
+TEST(CoupledFailureMode, UcsFailsInShearAndTheBtsSplitIsTensile)
+{
+  {
+    // UCS, coarse: the cylinder yields under uniaxial compression, where the Mohr-Coulomb
+    // failure plane is in compression (sigma_n = -sigma_c (1 - sin phi)/2 < 0): shear. Tension
+    // appears only at the free surface's bulging edge; crushing (a mean compression of the full
+    // UCS) nowhere, the platens being frictionless
+    CaseParameters p     = m1("UCS");
+    p.sph.spacing        = 5e-3;
+    p.loading.end_strain = 0.006;
+    LastSnapshot last;
+    const Summary s = run_case(p, last);
+    ASSERT_EQ(last.particles.failure_mode.size(), last.particles.n);
+    const double tensile = extra(s, "failure_mode_tensile"), shear = extra(s, "failure_mode_shear"),
+                 crushed = extra(s, "failure_mode_crushed");
+    ASSERT_GT(tensile + shear + crushed, 0.0) << "the specimen must have failed";
+    EXPECT_GT(shear / (tensile + shear + crushed), 0.8);
+    // the summary's counts are those of the field
+    const auto all = mode_counts(last.particles, [](double, double) { return true; });
+    EXPECT_EQ(all[2], shear);
+  }
+  {
+    // BTS at 2.5 mm: along the loaded diameter the disc centre is under (T, -3T), the failure
+    // plane in tension for phi = 63.7 deg (sigma_n = T (-1 + 2 sin phi) > 0): the central split
+    // is tensile. Near the platens (within 0.2 D) the contact compresses the rock: not counted.
+    CaseParameters p     = m1("BTS");
+    p.length             = 0.025;
+    p.sph.spacing        = 2.5e-3;
+    p.loading.end_strain = 0.004;
+    LastSnapshot last;
+    run_case(p, last);
+    const double D      = 0.05;
+    const auto central  = mode_counts(last.particles, [D](double x, double z) {
+      return std::abs(x) < 0.1 * D && std::abs(z - 0.5 * D) < 0.3 * D;
+    });
+    const double failed = central[1] + central[2] + central[3];
+    ASSERT_GT(failed, 0.0) << "the disc must have split";
+    EXPECT_GT(central[1] / failed, 0.9);
+  }
 }

@@ -200,3 +200,149 @@ namespace
     EXPECT_LT(principal(uni.stress)[2], 0.0);
   }
 } // namespace
+
+namespace
+{
+  using namespace sph;
+  using namespace sph::rock;
+
+  // Rock of the crack band law, residual 0: G_I = 100 J/m^2 over a band of 5 mm (g_I = 2e4
+  // J/m^3), G_II = 6.25 G_I.
+  MaterialParameters crack_band_rock(const RockModel model)
+  {
+    MaterialParameters m;
+    m.model             = model;
+    m.youngs_modulus    = 60e9;
+    m.poissons_ratio    = 0.25;
+    m.cohesion          = 20e6;
+    m.friction_angle    = 50.0 * M_PI / 180;
+    m.dilation_angle    = 0.0;
+    m.tensile_strength  = model == RockModel::mohr_coulomb_cutoff ? 8e6 : 0.0;
+    m.residual_fraction = 0;
+    m.softening_law     = SofteningLaw::fracture_energy;
+    m.fracture_energy   = 100;
+    return m;
+  }
+
+  // Drives one material point along the strain direction `direction` (unit scale) in small
+  // increments until it has lost all its strength (damage 1); returns the energy it dissipated
+  // per unit volume, the work of the stress less the elastic energy left [J/m^3].
+  double dissipation_to_failure(const ModelConstants &p, const Tensor3 &direction,
+                                FailureMode &mode)
+  {
+    Tensor3       stress = Tensor3::Zero();
+    MaterialState state;
+    double        work = 0;
+    const double  step = 2e-7; // strain per increment: about 1/500 of the peak strain
+    for (int k = 0; k < 200000 && state.damage < 1.0; ++k)
+      {
+        const Tensor3 de = step * direction;
+        const auto    up = update_mohr_coulomb(stress, de, state, p);
+        work += (0.5 * (stress + up.stress)).cwiseProduct(de).sum();
+        stress = up.stress;
+        state  = up.state;
+      }
+    mode = state.failure_mode;
+    EXPECT_GE(state.damage, 1.0) << "the point must have failed";
+    return work - elastic_energy_density(stress, p);
+  }
+
+  TEST(SphCrackBand, DamageOfTheDissipatedEnergyIsLinearSoftening)
+  {
+    // closed form d = (1 - sqrt(1 - w/g)) / (1 - r): d = 1 at w = g (1 - r^2), d = 1/2 at
+    // w = g (1 - (1 - (1 - r)/2)^2); increments add up to the same d (a function of w alone)
+    MaterialParameters m = crack_band_rock(RockModel::mohr_coulomb_cutoff);
+    m.residual_fraction  = 0.2;
+    const ModelConstants p = make_model_constants(m, 5e-3);
+    const double g = m.fracture_energy / 5e-3, a = 0.8;
+    EXPECT_NEAR(crack_band_damage(0, g * (1 - 0.04) * (1 - 1e-12), FailureMode::tensile, p), 1.0,
+                1e-6);
+    EXPECT_EQ(crack_band_damage(0, 1.01 * g, FailureMode::tensile, p), 1.0);
+    const double w_half = g * (1 - std::pow(1 - a / 2, 2));
+    EXPECT_NEAR(crack_band_damage(0, w_half, FailureMode::tensile, p), 0.5, 1e-12);
+    double d = 0;
+    for (int k = 0; k < 100; ++k)
+      d = crack_band_damage(d, w_half / 100, FailureMode::tensile, p);
+    EXPECT_NEAR(d, 0.5, 1e-9);
+    // shear returns draw on G_II = 6.25 G_I
+    EXPECT_NEAR(crack_band_damage(0, 6.25 * w_half, FailureMode::shear, p), 0.5, 1e-12);
+    // the strain law leaves it alone
+    EXPECT_EQ(make_model_constants(crack_band_rock(RockModel::mohr_coulomb_cutoff), 0.0)
+                .band_over_g_tensile,
+              0.0);
+  }
+
+  TEST(SphCrackBand, APointDissipatesGOverTheBandOnAnyPath)
+  {
+    // a point softened to zero strength dissipates g = G / h per unit volume, whatever the
+    // surface and the stress path: 2 % for the increments (1/500 of the peak strain each) and
+    // the trapezoidal work
+    const double h = 5e-3;
+    {
+      // stretching along z (no lateral strain: sigma_x = sigma_y = sigma_z / 3 elastically)
+      // onto the cut-off: tensile, G_I. (With a lateral contraction prescribed as well, the
+      // crack strain along z would build a lateral compression up to the Mohr-Coulomb surface,
+      // and the later returns would be shear, G_II.)
+      const ModelConstants p = make_model_constants(crack_band_rock(RockModel::mohr_coulomb_cutoff), h);
+      Tensor3 dir = Tensor3::Zero();
+      dir(2, 2)   = 1.0;
+      FailureMode mode;
+      EXPECT_NEAR(dissipation_to_failure(p, dir, mode) / (100 / h), 1.0, 0.02);
+      EXPECT_EQ(mode, FailureMode::tensile);
+    }
+    {
+      // a BTS-centre-like path on plain Mohr-Coulomb (psi = 0): extension along x, compression
+      // along z; the failure plane is in tension at the peak, but as the cohesion goes the
+      // compression along z remains and the last returns are friction on a compressed plane
+      // (shear): with G_II = G_I the energy is G whatever the mix
+      MaterialParameters m = crack_band_rock(RockModel::mohr_coulomb);
+      m.shear_fracture_energy_ratio = 1;
+      const ModelConstants p = make_model_constants(m, h);
+      Tensor3 dir = Tensor3::Zero();
+      dir(0, 0)   = 1.0;
+      dir(2, 2)   = -0.6;
+      FailureMode mode;
+      EXPECT_NEAR(dissipation_to_failure(p, dir, mode) / (100 / h), 1.0, 0.02);
+    }
+    {
+      // compression with a little lateral stress (sigma_x / sigma_z = 0.077, below
+      // 1 / N_phi = 0.13, so that it yields) on plain Mohr-Coulomb: the failure plane in
+      // compression: shear, G_II = 6.25 G_I. A band of 0.5 mm: at 5 mm the softening would snap
+      // back (2 E G_II / sigma^2 = 1.1 mm at the peak's 262 MPa) and the point, under strain
+      // control, would drop to zero strength in one step, dissipating more than G_II
+      const double         h_c = 5e-4;
+      const ModelConstants p = make_model_constants(crack_band_rock(RockModel::mohr_coulomb), h_c);
+      Tensor3 dir = Tensor3::Zero();
+      dir(2, 2)   = -1.0;
+      dir(0, 0) = dir(1, 1) = 0.2;
+      FailureMode mode;
+      // 3 %: a band ten times narrower, so ten times more softening increments than above
+      EXPECT_NEAR(dissipation_to_failure(p, dir, mode) / (625 / h_c), 1.0, 0.03);
+      EXPECT_NE(mode, FailureMode::tensile);
+    }
+  }
+
+  TEST(SphFailureMode, ClassifiesTheStressStatesOfTheLaboratoryTests)
+  {
+    MaterialParameters m = crack_band_rock(RockModel::mohr_coulomb);
+    m.softening_law      = SofteningLaw::strain;
+    const ModelConstants p = make_model_constants(m);
+    const double ucs = 2 * m.cohesion * std::cos(m.friction_angle) / (1 - std::sin(m.friction_angle));
+    EXPECT_NEAR(p.crush_pressure, ucs, 1e-6 * ucs);
+    const double sp = p.sin_phi;
+    // uniaxial tension, the BTS centre (T, -3T) for phi > 30 deg: the failure plane in tension
+    EXPECT_EQ(classify_failure({5e6, 0, 0}, 0, sp, 1, p), FailureMode::tensile);
+    EXPECT_EQ(classify_failure({5e6, 0, -15e6}, 0, sp, 1, p), FailureMode::tensile);
+    // uniaxial compression (mean ucs/3): shear
+    EXPECT_EQ(classify_failure({0, 0, -ucs}, 0, sp, 1, p), FailureMode::shear);
+    // mean compression of at least the particle's own ucs: crushed; a weaker particle sooner
+    EXPECT_EQ(classify_failure({-0.8 * ucs, -0.8 * ucs, -1.5 * ucs}, 0, sp, 1, p),
+              FailureMode::crushed);
+    EXPECT_EQ(classify_failure({-0.4 * ucs, -0.4 * ucs, -1.5 * ucs}, 0, sp, 1, p),
+              FailureMode::shear);
+    EXPECT_EQ(classify_failure({-0.4 * ucs, -0.4 * ucs, -1.5 * ucs}, 0, sp, 0.5, p),
+              FailureMode::crushed);
+    // on the cut-off, whatever the rest
+    EXPECT_EQ(classify_failure({3e6, -50e6, -90e6}, 3e6, sp, 1, p), FailureMode::tensile);
+  }
+} // namespace

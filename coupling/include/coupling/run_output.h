@@ -45,6 +45,9 @@ namespace coupling
     std::vector<double> stress;          ///< [Pa]
     std::vector<double> plastic_strain;  ///< equivalent plastic strain [-]
     std::vector<double> damage;          ///< [0,1]
+    /// how each particle failed, sph::FailureMode as an integer: 0 none, 1 tensile, 2 shear,
+    /// 3 crushed (empty: not recorded)
+    std::vector<int> failure_mode;
   };
 
   /// A platen or cutter mesh at one instant (fem's type; MeshSnapshot::name names it in the

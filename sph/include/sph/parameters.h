@@ -24,6 +24,18 @@ namespace sph
     hoek_brown           ///< generalised Hoek-Brown with its own tension cut-off, softening
   };
 
+  /// How the rock's strength softens after its peak (see rock_models.h, plastic_update).
+  enum class SofteningLaw
+  {
+    /// linearly in the equivalent plastic strain, to the residual at `softening_strain`: the
+    /// dissipated energy per unit crack area scales with the particle spacing
+    strain,
+    /// crack band: each particle dissipates `fracture_energy` (tensile failure) or
+    /// `fracture_energy * shear_fracture_energy_ratio` (shear failure) per unit crack area over
+    /// its band width (rock::crack_band_width: two spacings at CSLH 1.2), whatever the spacing
+    fracture_energy
+  };
+
   /// SPH numerics.
   struct Parameters
   {
@@ -67,6 +79,17 @@ namespace sph
     double    hb_a              = 0.5;     ///< Hoek-Brown a [-]
     double    softening_strain  = 0.0;     ///< equivalent plastic strain to residual [-]; 0 = none
     double    residual_fraction = 0.1;     ///< residual strength / peak strength [-]
+    SofteningLaw softening_law  = SofteningLaw::strain; ///< how the strength softens
+    /// Mode I fracture energy G_I [J/m^2] (SofteningLaw::fracture_energy). 100 J/m^2: basalt's
+    /// mode I toughness K_Ic = 2.7-3.8 MPa m^1/2 (Icelandic basalt; Balme et al. 2004, J.
+    /// Volcanol. Geotherm. Res. 132, 159-172) gives G_I = K_Ic^2 (1 - nu^2) / E = 69-137 J/m^2
+    /// at E = 97 GPa, nu = 0.28.
+    double    fracture_energy   = 100.0;
+    /// G_II / G_I [-]: shear (mode II) fracture energy over the mode I one. 6.25 = 2.5^2: rock's
+    /// K_IIc is 2-3 times its K_Ic (Rao 1999, "Pure shear fracture of brittle rock", Lulea
+    /// University of Technology; Backers et al. 2002, Int. J. Rock Mech. Min. Sci. 39, 755-769)
+    /// and G = K^2 (1 - nu^2) / E in both modes.
+    double    shear_fracture_energy_ratio = 6.25;
     /// Mohr-Coulomb friction angle of the fully damaged (crushed) rock phi_r [rad]: the angle
     /// goes linearly from phi to phi_r with the damage, as the cohesion goes to its residual.
     /// < 0: phi throughout (no friction softening).

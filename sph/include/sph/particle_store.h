@@ -5,16 +5,28 @@
 #include <sph/types.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace sph
 {
+  /// How a particle failed: the kind of the plastic return that last changed it while it still
+  /// had strength to lose (rock_models.h, classify_failure). Values as written to results.h5.
+  enum class FailureMode : std::uint8_t
+  {
+    none    = 0, ///< never yielded
+    tensile = 1, ///< tension cut-off, or a Mohr-Coulomb return whose failure plane is in tension
+    shear   = 2, ///< Mohr-Coulomb (Hoek-Brown) return with the failure plane in compression
+    crushed = 3  ///< shear under a mean compression of at least the rock's uniaxial strength
+  };
+
   /// History of one particle's material (step-18 style: a small plain struct).
   struct MaterialState
   {
     double plastic_strain = 0; ///< equivalent plastic strain sqrt(2/3 e_p:e_p), accumulated [-]
     double damage         = 0; ///< softening damage in [0, 1]; never decreases [-]
     double strength       = 1; ///< the particle's strength relative to the rock's (scatter) [-]
+    FailureMode failure_mode = FailureMode::none; ///< how the particle failed
   };
 
   /// All particle fields, one array per field, indexed by particle number.

@@ -33,10 +33,56 @@ namespace sph::rock
     double residual_fraction = 1;  ///< residual / peak strength [-]
     double phi = 0;                ///< friction angle [rad]
     double phi_residual = -1;      ///< friction angle at damage 1 [rad]; < 0: phi throughout
+    /// Crack band (SofteningLaw::fracture_energy): band width h over the fracture energy of a
+    /// tensile and of a shear failure, h / G_I and h / G_II [m^3/J]; 0: the strain law
+    double band_over_g_tensile = 0, band_over_g_shear = 0;
+    /// Mean compression [Pa] from which a shear failure counts as crushing: the intact rock's
+    /// uniaxial compressive strength (2 c cos phi / (1 - sin phi); Hoek-Brown: sigma_ci s^a)
+    double crush_pressure = 0;
   };
 
-  /// The model constants of a material.
-  inline ModelConstants make_model_constants(const MaterialParameters &m)
+  /// Uniaxial tensile strength of the intact rock of `m` [Pa]: the Mohr-Coulomb limit
+  /// 2 c cos(phi) / (1 + sin(phi)), the cut-off where lower; Hoek-Brown: its cut-off
+  /// s sigma_ci / m_b (an upper bound of the uniaxial one); elastic: infinity.
+  inline double uniaxial_tensile_strength(const MaterialParameters &m)
+  {
+    if (m.model == RockModel::elastic)
+      return HUGE_VAL;
+    if (m.model == RockModel::hoek_brown)
+      return m.tensile_strength > 0 ? std::min(m.tensile_strength, m.hb_s * m.hb_sigma_ci / m.hb_mb) :
+                                      m.hb_s * m.hb_sigma_ci / m.hb_mb;
+    const double mc =
+      2.0 * m.cohesion * std::cos(m.friction_angle) / (1.0 + std::sin(m.friction_angle));
+    return m.model == RockModel::mohr_coulomb_cutoff ? std::min(mc, m.tensile_strength) : mc;
+  }
+
+  /// Width of an SPH crack band [m] on a lattice of spacing dx with smoothing length
+  /// h = cslh * dx: the narrowest zone of broken (stress-free) particle layers that separates
+  /// the body. Across n broken layers the nearest unbroken layers are (n + 1) dx apart and
+  /// share no pair once that is at least the support radius 2 h: n = ceil(2 cslh - 1) layers
+  /// (cslh = 1.2: 2). The direct tension test in tests/sph measures it: without hourglass
+  /// control two layers break, the force falls to zero, and the energy stays put as the gap
+  /// opens further, at 2.5 and at 1.25 mm.
+  inline double crack_band_width(const double spacing, const double cslh)
+  {
+    return std::ceil(2.0 * cslh - 1.0 - 1e-9) * spacing;
+  }
+
+  /// Widest crack band [m] that SofteningLaw::fracture_energy can soften without snap-back:
+  /// in uniaxial tension the crack strain at zero stress, 2 G_I / (f_t h), must exceed the
+  /// elastic strain at the peak, f_t / E, so h < 2 E G_I / f_t^2 (twice Hillerborg's
+  /// characteristic length E G_I / f_t^2). Infinite for a rock without tensile strength limit.
+  inline double max_crack_band_width(const MaterialParameters &m)
+  {
+    const double ft = uniaxial_tensile_strength(m);
+    return std::isfinite(ft) && ft > 0 ? 2.0 * m.youngs_modulus * m.fracture_energy / (ft * ft) :
+                                         HUGE_VAL;
+  }
+
+  /// The model constants of a material; `band_width` [m] is the crack band width h of
+  /// SofteningLaw::fracture_energy (crack_band_width; unused by the strain law).
+  inline ModelConstants make_model_constants(const MaterialParameters &m,
+                                             const double band_width = 0.0)
   {
     ModelConstants p;
     const double E = m.youngs_modulus, nu = m.poissons_ratio;
@@ -60,6 +106,20 @@ namespace sph::rock
     p.residual_fraction = m.residual_fraction;
     p.phi               = m.friction_angle;
     p.phi_residual      = m.residual_friction_angle;
+    p.crush_pressure    = (m.model == RockModel::hoek_brown) ?
+                            m.hb_sigma_ci * std::pow(m.hb_s, m.hb_a) :
+                            2.0 * m.cohesion * p.cos_phi / (1.0 - p.sin_phi);
+    if (m.softening_law == SofteningLaw::fracture_energy)
+      {
+        // the strain law's variable does not soften; the crack band does (plastic_update)
+        p.softening_strain = 0;
+        if (m.residual_fraction < 1.0 && band_width > 0 && m.fracture_energy > 0)
+          {
+            p.band_over_g_tensile = band_width / m.fracture_energy;
+            p.band_over_g_shear =
+              band_width / (m.fracture_energy * m.shear_fracture_energy_ratio);
+          }
+      }
     return p;
   }
 
@@ -245,6 +305,65 @@ namespace sph::rock
     return {elastic_trial(stress_old, strain_increment, prm), old_state};
   }
 
+  /// The kind of a plastic return that ended at sorted principal stresses s (tension +) of a
+  /// particle of strength factor `strength`: tensile where s lies on the tension cut-off `st`
+  /// (> 0; <= 0: none) or where the failure plane carries a tensile normal stress - the point
+  /// where Mohr's circle touches the envelope of friction angle phi, sigma_n = (s0 + s2) / 2 +
+  /// (s0 - s2) / 2 sin(phi) > 0 (so the apex too); crushed where the mean compression
+  /// -(s0 + s1 + s2) / 3 reaches the particle's own uniaxial compressive strength
+  /// strength * crush_pressure (a UCS peak has a third of it, a confined or contact-loaded point
+  /// more); shear otherwise. Uniaxial tension gives tensile, uniaxial compression shear, the BTS
+  /// disc centre (s0 = T, s2 = -3 T) tensile for sin(phi) > 1/2 (phi > 30 deg).
+  inline FailureMode classify_failure(const Principal &s, const double st, const double sin_phi,
+                                      const double strength, const ModelConstants &p)
+  {
+    if (st > 0 && s[0] >= st * (1.0 - 1e-9))
+      return FailureMode::tensile;
+    if (0.5 * (s[0] + s[2]) + 0.5 * (s[0] - s[2]) * sin_phi > 0)
+      return FailureMode::tensile;
+    return -s.sum() / 3.0 >= strength * p.crush_pressure ? FailureMode::crushed :
+                                                          FailureMode::shear;
+  }
+
+  /// Crack band softening (SofteningLaw::fracture_energy): the damage after a plastic increment
+  /// that dissipated `dissipation` [J/m^3] (sigma : d eps_p) in a return of kind `mode`, from
+  /// damage `damage_old`.
+  ///
+  /// Derivation. The strength factor 1 - (1 - r) d (r: residual fraction) scales c and sigma_t.
+  /// In uniaxial tension on the cut-off the plastic strain is the crack strain eps_cr along the
+  /// load (one active principal direction), and the softening variable of the strain law, the
+  /// equivalent plastic strain kappa = sqrt(2/3 eps_p : eps_p), is sqrt(2/3) eps_cr. Linear
+  /// softening sigma = f_t (1 - eps_cr / eps_0) over a band of width h dissipates
+  /// G_f = h f_t eps_0 / 2 per unit crack area, so eps_0 = 2 G_f / (f_t h) - which is also the
+  /// total strain at zero stress of the stress-strain triangle, the elastic strain being zero
+  /// there; the elastic strain f_t / E at the peak only limits h (max_crack_band_width). With a
+  /// residual the strength follows the same line to r f_t and stops: the strain law's
+  /// softening strain equivalent to G_f is kappa_f = (1 - r) sqrt(2/3) 2 G_f / (f_t h).
+  /// That equivalence holds for this one stress path only: on the Mohr-Coulomb surface with
+  /// psi < phi the dissipation per unit kappa, sigma : eps_p / kappa, depends on the mean
+  /// stress (psi = 0: sqrt(3)/2 (s0 - s2), four times larger at the BTS disc centre than in
+  /// uniaxial tension at the same s0), so a fixed kappa_f would dissipate a path-dependent
+  /// energy. Instead the damage follows the dissipated energy w per unit band volume, in units
+  /// of g = G / h (G_I for tensile returns, G_II for shear and crushing): the linear-softening
+  /// rule dd = dw / (2 (1 - r) g (1 - (1 - r) d)) - which is the kappa_f above on the
+  /// uniaxial path, where dw = f_t (1 - (1 - r) d) sqrt(3/2) dkappa - integrates to
+  /// w / g = 1 - (1 - (1 - r) d)^2 on every path. So
+  ///   d = (1 - sqrt(1 - w / g)) / (1 - r),  d = 1 once w / g >= 1 - r^2,
+  /// and a particle that softens to zero strength (r = 0) has dissipated exactly G h^2 per unit
+  /// band volume h^3 whatever its stress path, spacing or Lode angle. The state needs no new
+  /// variable: w / g follows from d.
+  inline double crack_band_damage(const double damage_old, const double dissipation,
+                                  const FailureMode mode, const ModelConstants &p)
+  {
+    const double a     = 1.0 - p.residual_fraction;
+    const double left  = 1.0 - a * damage_old;
+    const double scale = mode == FailureMode::tensile ? p.band_over_g_tensile : p.band_over_g_shear;
+    const double rest  = left * left - std::max(dissipation, 0.0) * scale; // 1 - w / g
+    if (!(rest > 0))
+      return 1.0;
+    return std::min(std::max((1.0 - std::sqrt(rest)) / a, damage_old), 1.0);
+  }
+
   /// Implementation of the plastic models: `surface(s, strength, damage)` returns s onto the
   /// yield surface of a particle with scatter factor `strength` (old_state.strength) at damage
   /// `damage` (softened strength, and friction angle where it softens) and says whether it was
@@ -252,10 +371,11 @@ namespace sph::rock
   /// fixed-point iteration. `surely_elastic(trial, strength, damage)` is a cheaper sufficient
   /// test for an admissible trial stress (no principal stresses needed); when it holds the step
   /// is elastic, as `surface` would find.
-  template <typename Surface, typename SurelyElastic>
+  template <typename Surface, typename SurelyElastic, typename Classify>
   inline StressUpdate plastic_update(const Tensor3 &stress_old, const Tensor3 &de,
                                      const MaterialState &old_state, const ModelConstants &prm,
-                                     const Surface &surface, const SurelyElastic &surely_elastic)
+                                     const Surface &surface, const SurelyElastic &surely_elastic,
+                                     const Classify &classify)
   {
     const Tensor3 trial = elastic_trial(stress_old, de, prm);
     Principal     s_trial;
@@ -274,6 +394,70 @@ namespace sph::rock
         return {trial, old_state};
     }
     principal_decomposition(trial, s_trial, Q);
+    const auto close = [](const double a, const double b) {
+      return std::abs(a - b) <= 1e-13 * std::abs(a) + 1e-300;
+    };
+    if (prm.band_over_g_tensile > 0)
+      {
+        // crack band: the damage at the end of the step solves d = crack_band_damage(the
+        // dissipation of the return at d); the return weakens as d grows, so the fixed point
+        // rises monotonically from the old damage (regula falsi where it creeps)
+        Principal   s;
+        FailureMode mode     = FailureMode::none;
+        double      kappa_dk = 0;
+        const auto  damage_after = [&](const double d) {
+          s = s_trial;
+          surface(s, old_state.strength, d);
+          const Principal ep = principal_compliance_times(s_trial - s, prm);
+          kappa_dk           = std::sqrt(2.0 / 3.0 * ep.squaredNorm());
+          mode               = classify(s, old_state.strength, d);
+          return crack_band_damage(old_state.damage, s.dot(ep), mode, prm);
+        };
+        double d         = old_state.damage;
+        bool   converged = false;
+        for (int it = 0; it < 50 && !converged; ++it)
+          {
+            const double dn = damage_after(d);
+            converged       = close(dn, d);
+            d               = dn;
+          }
+        if (!converged)
+          {
+            double a = d, fa = damage_after(a) - a, b = 1.0, fb = damage_after(b) - b;
+            int    side = 0;
+            for (int it = 0; it < 100 && fa > 0 && fb < 0 && !close(a, b); ++it)
+              {
+                const double c  = (a * fb - b * fa) / (fb - fa);
+                const double fc = damage_after(c) - c;
+                if (fc > 0)
+                  {
+                    a = c, fa = fc;
+                    if (side == 1)
+                      fb *= 0.5;
+                    side = 1;
+                  }
+                else
+                  {
+                    b = c, fb = fc;
+                    if (side == -1)
+                      fa *= 0.5;
+                    side = -1;
+                  }
+                if (fc == 0)
+                  a = b = c;
+              }
+            d = fb >= 0 ? b : (fa <= 0 ? a : 0.5 * (a + b));
+            damage_after(d);
+          }
+        StressUpdate out;
+        out.state                = old_state;
+        out.stress               = Q * s.asDiagonal() * Q.transpose();
+        out.state.plastic_strain = old_state.plastic_strain + kappa_dk;
+        out.state.damage         = std::max(old_state.damage, d);
+        if (old_state.damage < 1.0)
+          out.state.failure_mode = mode;
+        return out;
+      }
     // the equivalent plastic strain of the return at the damage of a plastic strain increment
     // dk (s: the returned stress); the increment solves plastic_strain_of(dk) = dk
     const auto plastic_strain_of = [&](const double dk, Principal &s) {
@@ -283,9 +467,6 @@ namespace sph::rock
       surface(s, old_state.strength, damage);
       const Principal ep = principal_compliance_times(s_trial - s, prm);
       return std::sqrt(2.0 / 3.0 * ep.squaredNorm());
-    };
-    const auto close = [](const double a, const double b) {
-      return std::abs(a - b) <= 1e-13 * std::abs(a) + 1e-300;
     };
     Principal s;
     double    dkappa    = 0;
@@ -341,6 +522,8 @@ namespace sph::rock
     out.stress                = Q * s.asDiagonal() * Q.transpose();
     out.state.plastic_strain  = old_state.plastic_strain + dkappa;
     out.state.damage = std::max(old_state.damage, damage_of(out.state.plastic_strain, prm));
+    if (old_state.damage < 1.0)
+      out.state.failure_mode = classify(s, old_state.strength, out.state.damage);
     return out;
   }
 
@@ -407,7 +590,12 @@ namespace sph::rock
                                        const double damage) {
       return mohr_coulomb_surely_elastic(t, strength, damage, prm);
     };
-    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
+    const auto classify = [&prm](const Principal &s, const double strength, const double damage) {
+      const double st = prm.tensile_strength * strength * strength_factor(damage, prm);
+      return classify_failure(s, st, friction_at(damage, prm).sin_phi, strength, prm);
+    };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic,
+                          classify);
   }
 
   /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), returned by
@@ -454,7 +642,20 @@ namespace sph::rock
     };
     // no cheap test: the principal stresses decide
     const auto surely_elastic = [](const Tensor3 &, double, double) { return false; };
-    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic);
+    // the friction angle of the envelope's tangent at s0: sin = (N - 1) / (N + 1), N the slope
+    // d sigma_1 / d sigma_3 (compression +); beyond the tensile apex, tensile
+    const auto classify = [&prm](const Principal &s, const double strength, const double damage) {
+      const double factor = strength * strength_factor(damage, prm);
+      const double ss     = prm.hb_s * factor;
+      const double st = std::min(prm.tensile_strength * factor, ss * prm.hb_sigma_ci / prm.hb_mb);
+      const double base = -prm.hb_mb * s[0] / prm.hb_sigma_ci + ss;
+      if (!(base > 0))
+        return FailureMode::tensile;
+      const double N = 1.0 + prm.hb_a * prm.hb_mb * std::pow(base, prm.hb_a - 1.0);
+      return classify_failure(s, st, (N - 1.0) / (N + 1.0), strength, prm);
+    };
+    return plastic_update(stress_old, strain_increment, old_state, prm, surface, surely_elastic,
+                          classify);
   }
 
   /// Run-time model choice: dispatched once per particle loop with std::visit.
