@@ -5,6 +5,10 @@
 //
 // Exit status (docs/design.md): 0 done, 1 internal failure, 2 bad input (one line on stderr
 // naming the culprit and what is accepted), 3 unstable run.
+//
+// MPI: cosim initialises MPI and runs as one process without mpirun. Under `mpirun -np N` every
+// rank runs the same command; only rank 0 prints (the others' stdout and stderr go to
+// /dev/null) and writes files, and every rank ends with the same exit status.
 #include <app/calibrate_command.h>
 #include <app/cli.h>
 #include <app/diagnose_command.h>
@@ -13,6 +17,9 @@
 #include <app/study.h>
 #include <coupling/errors.h>
 #include <diagnose/text_input.h>
+
+#include <mpi.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -93,13 +100,48 @@ namespace
   {
     std::fflush(stdout);
     std::fflush(stderr);
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    // bad input, an unstable or interrupted run: every rank gets there alike; anything else
+    // may have left the other ranks waiting in a collective
+    if (size > 1 && status == 1)
+      MPI_Abort(MPI_COMM_WORLD, status);
+    MPI_Finalize();
     std::_Exit(status);
   }
+
+  /// MPI for the process's lifetime; on ranks other than 0, stdout and stderr go to /dev/null.
+  struct MpiSession
+  {
+    MpiSession(int &argc, char **&argv)
+    {
+      int provided = 0;
+      MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      if (rank != 0)
+      {
+        if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+          std::_Exit(1);
+      }
+    }
+    ~MpiSession() { MPI_Finalize(); }
+    int rank = 0, size = 1;
+  };
+
+  int run_command_line(const std::vector<std::string> &args, int n_ranks);
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  const MpiSession mpi(argc, argv);
+  return run_command_line(std::vector<std::string>(argv + 1, argv + argc), mpi.size);
+}
+
+namespace
+{
+  int run_command_line(const std::vector<std::string> &args, const int n_ranks)
+  {
   if (args.empty())
   {
     std::fputs(general_help().c_str(), stderr);
@@ -129,6 +171,12 @@ int main(int argc, char **argv)
     return 2;
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (n_ranks > 1 && std::string(command->name) != "run")
+  {
+    error_line(std::string("cosim ") + command->name + " runs on one MPI rank only (" +
+               std::to_string(n_ranks) + " given); run it without mpirun or with -np 1");
+    return 2;
+  }
   for (const auto &a : rest)
     if (a == "--help" || a == "-h")
     {
@@ -162,3 +210,4 @@ int main(int argc, char **argv)
   }
   return status;
 }
+} // namespace

@@ -27,6 +27,7 @@ namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 namespace fem
 {
@@ -86,6 +87,9 @@ namespace coupling
   struct StabilityWatch
   {
     const sph::Body<3> *rock = nullptr;
+    /// A distributed rock: this rank's part (the checks then scan the owned particles and
+    /// agree over the ranks); null on one rank.
+    const sph::Domain *domain = nullptr;
     /// The steel bodies, each with its name in messages ("top platen", "cutter").
     std::vector<std::pair<std::string, const fem::SteelBody *>> steel;
     double domain_size  = 0; ///< a particle with |x_d| >= this has left the domain [m]

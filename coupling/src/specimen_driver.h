@@ -19,6 +19,7 @@ namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 namespace fem
 {
@@ -84,12 +85,24 @@ namespace coupling
     void select_gauges();
     double top_velocity(double t) const;
     double exchange_imbalance() const;
+    /// Distributed runs: sums the platen forces, the particles' contact-force totals and the
+    /// contact normal forces over the ranks (one MPI_Allreduce); the imbalance of the step.
+    double reduce_contact_forces();
     HistoryRow history_row() const;
 
     CaseParameters prm_;
     LoadingPlan plan_;
     bool bts_ = false, ctcs_ = false;
     std::unique_ptr<sph::Body<3>> body_;
+    // distributed runs (more than one MPI rank): this rank's part of the body (null on one
+    // rank). body_ then holds the local particles (owned and ghosts, ascending global index),
+    // the contacts the owned ones packed (owned_x_, owned_v_, owned_m_), and every sum over the
+    // particles is taken over the owned ones and summed over the ranks
+    std::unique_ptr<sph::Domain> domain_;
+    std::vector<double> owned_x_, owned_v_, owned_m_;
+    std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
+    double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]
+    std::size_t n_global_pairs_ = 0;            // SPH pairs of the whole body
     std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
     std::unique_ptr<fem::SteelBody> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
@@ -105,7 +118,9 @@ namespace coupling
     double max_exchange_imbalance_ = 0; ///< see Summary::max_exchange_imbalance
     double domain_size_ = 0;
     // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
+    // (local indices; distributed: of the owned members; gauge_counts_: members of all ranks)
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
+    double gauge_counts_[3] = {0, 0, 0};
     double gauge_length0_ = 0;
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
     // the stop criterion's state, members so that a checkpoint holds them
