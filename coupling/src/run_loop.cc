@@ -30,7 +30,7 @@ namespace coupling
     void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
                             const std::size_t n_steps, const double time,
                             std::chrono::steady_clock::time_point &last_checkpoint,
-                            const SaveState &save_state, const sph::Domain *domain)
+                            const SaveState &save_state, const bool *agreed)
     {
       const auto now = std::chrono::steady_clock::now();
       bool stop_asked =
@@ -41,14 +41,11 @@ namespace coupling
       bool by_time = output.checkpoint_minutes > 0 &&
                      std::chrono::duration<double>(now - last_checkpoint).count() >=
                        60.0 * output.checkpoint_minutes;
-      if (domain) // every rank stops and checkpoints at the same step (a signal or a clock of any)
+      if (agreed) // distributed: what all ranks agreed (a signal or a clock of any rank)
       {
-        const std::vector<double> all = domain->all_gather({stop_asked ? 1.0 : 0.0, by_time ? 1.0 : 0.0});
-        for (std::size_t k = 0; k < all.size(); k += 2)
-        {
-          stop_asked = stop_asked || all[k] != 0.0;
-          by_time    = by_time || all[k + 1] != 0.0;
-        }
+        stop_asked = agreed[0] || (output.stop_after_steps > 0 &&
+                                   n_steps == static_cast<std::size_t>(output.stop_after_steps));
+        by_time    = agreed[1];
       }
       if (stop_asked || by_steps || by_time)
       {
@@ -91,7 +88,8 @@ namespace coupling
     }
     check_stability(observer); // the start (or the restored state) is the first good state
 
-    auto last_checkpoint = std::chrono::steady_clock::now();
+    auto &last_checkpoint = last_checkpoint_;
+    last_checkpoint       = std::chrono::steady_clock::now();
     std::string reason;
     while (true)
     {
@@ -127,6 +125,7 @@ namespace coupling
         next_snap_ += schedule_.snapshot_interval;
       }
       const std::size_t n = test_.n_steps();
+      const bool agreed[2] = {agreed_stop_, agreed_by_time_};
       if (n % 20 == 0 || stop)
         observer.progress(n, t, std::min(1.0, t / schedule_.progress_time));
       if (stop)
@@ -134,7 +133,8 @@ namespace coupling
 
       // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
       checkpoint_or_stop(observer, output_, n, t, last_checkpoint,
-                         [this](StateArrays &state) { save_state(state); }, watch_.domain);
+                         [this](StateArrays &state) { save_state(state); },
+                         watch_.domain ? agreed : nullptr);
     }
     return reason;
   }
@@ -303,16 +303,29 @@ namespace coupling
           break;
         }
       const auto gid = [&](const long i) { return static_cast<double>(parts->global_ids()[i]); };
+      // (with the wishes to stop or to checkpoint by the clock: one collective a step)
+      const OutputParameters &output = output_;
+      const bool by_time =
+        output.checkpoint_minutes > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_).count() >=
+          60.0 * output.checkpoint_minutes;
       std::vector<double> mine = {bad >= 0 ? gid(bad) : -1.0, bad_finite ? 1.0 : 0.0, 0, 0, 0,
                                   kinetic, dt_min, gid(i_dt), v[i_dt].norm(), h[i_dt], v_max,
-                                  gid(i_v), 0, 0, 0};
+                                  gid(i_v), 0, 0, 0, observer.stop_requested() ? 1.0 : 0.0,
+                                  by_time ? 1.0 : 0.0};
       if (bad >= 0)
         for (int d = 0; d < 3; ++d)
           mine[2 + d] = x[bad][d];
       for (int d = 0; d < 3; ++d)
         mine[12 + d] = x[i_v][d];
-      constexpr std::size_t w = 15;
+      constexpr std::size_t w = 17;
       const std::vector<double> all = parts->all_gather(mine);
+      agreed_stop_ = agreed_by_time_ = false;
+      for (std::size_t k = 0; k < all.size(); k += w)
+      {
+        agreed_stop_    = agreed_stop_ || all[k + 15] != 0.0;
+        agreed_by_time_ = agreed_by_time_ || all[k + 16] != 0.0;
+      }
       kinetic = 0;
       dt_min  = 1e300;
       v_max   = 0;

@@ -19,6 +19,7 @@
 #include <coupling/run_output.h>
 
 #include <cstddef>
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -139,6 +140,10 @@ namespace coupling
     double next_row_ = 0, next_snap_ = 0; ///< times of the next history row and snapshot [s]
     ParticleSnapshot last_good_;
     std::size_t last_good_step_ = 0;
+    // distributed runs: the stop and time-checkpoint wishes of all ranks, agreed by
+    // check_stability's one collective of the step (the same on every rank)
+    std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
+    bool agreed_stop_ = false, agreed_by_time_ = false;
     double last_good_time_      = 0;
   };
 } // namespace coupling

@@ -529,7 +529,7 @@ namespace coupling
       double w       = 0;
       for (const std::int32_t i : domain_->owned_indices())
         w += fp[i].dot(v[i]);
-      pressure_work_ += domain_->sum(w) * dt_;
+      pressure_work_pending_ += w * dt_; // summed over the ranks at the next step
       // the ghosts' positions and velocities from their owners
       body_->exchange_ghosts(*domain_);
     }
@@ -582,7 +582,7 @@ namespace coupling
     // normal forces; summed over the ranks by one MPI_Allreduce, so every rank steps the same
     // platens
     const std::size_t nt = force_on_top_.size(), nb = force_on_bottom_.size();
-    std::vector<double> buffer(nt + nb + 6, 0.0);
+    std::vector<double> buffer(nt + nb + 7, 0.0);
     std::copy(force_on_top_.begin(), force_on_top_.end(), buffer.begin());
     std::copy(force_on_bottom_.begin(), force_on_bottom_.end(), buffer.begin() + nt);
     double *tail = buffer.data() + nt + nb;
@@ -595,12 +595,15 @@ namespace coupling
     }
     tail[4] = contact_top_->normal_force();
     tail[5] = contact_bottom_->normal_force();
+    tail[6] = pressure_work_pending_;
     MPI_Allreduce(MPI_IN_PLACE, buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM,
                   domain_->comm());
     std::copy(buffer.begin(), buffer.begin() + nt, force_on_top_.begin());
     std::copy(buffer.begin() + nt, buffer.begin() + nt + nb, force_on_bottom_.begin());
     normal_top_    = tail[4];
     normal_bottom_ = tail[5];
+    pressure_work_ += tail[6];
+    pressure_work_pending_ = 0;
     double total[3] = {tail[0], tail[1], tail[2]};
     for (const auto *platen : {&force_on_top_, &force_on_bottom_})
       for (std::size_t i = 0; i < platen->size(); ++i)
@@ -654,12 +657,14 @@ namespace coupling
         n_failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
       const std::vector<double> all =
         domain_->sum({z_lo, z_hi, er, e.kinetic, e.internal, e.plastic, e.viscous, e.hourglass,
-                      e.external, pen, friction_top, friction_bottom, n_failed});
+                      e.external, pen, friction_top, friction_bottom, n_failed,
+                      pressure_work_pending_});
       z_lo = all[0], z_hi = all[1], er = all[2];
       e.kinetic = all[3], e.internal = all[4], e.plastic = all[5], e.viscous = all[6];
       e.hourglass = all[7], e.external = all[8];
       pen = all[9], friction_top = all[10], friction_bottom = all[11];
       r.n_failed = all[12];
+      r.external_work = frame_work_ + (pressure_work_ + all[13]);
     }
     else
       r.n_failed = n_failed_particles(*body_);
@@ -674,7 +679,8 @@ namespace coupling
     r.internal_energy     = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
     r.dissipated_energy   = e.dissipated() + friction_top + friction_bottom +
                           top_->damping_dissipation() + bottom_->damping_dissipation();
-    r.external_work = frame_work_ + pressure_work_;
+    if (!domain_)
+      r.external_work = frame_work_ + pressure_work_;
     return r;
   }
 
@@ -778,7 +784,8 @@ namespace coupling
     out["driver.scalars"] = {time_,
                              static_cast<double>(n_steps_),
                              frame_work_,
-                             pressure_work_,
+                             domain_ ? pressure_work_ + domain_->sum(pressure_work_pending_) :
+                                       pressure_work_,
                              peak_force_,
                              armed_ ? 1.0 : 0.0,
                              dt_,
@@ -861,6 +868,7 @@ namespace coupling
     n_steps_       = static_cast<std::size_t>(d[1]);
     frame_work_    = d[2];
     pressure_work_ = d[3];
+    pressure_work_pending_ = 0;
     peak_force_    = d[4];
     armed_         = d[5] != 0.0;
     touching_      = d[9] != 0.0;

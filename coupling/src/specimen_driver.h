@@ -66,6 +66,7 @@ namespace coupling
     void step() override;
     double time() const override { return time_; }
     std::size_t n_steps() const override { return n_steps_; }
+    /// (distributed: up to the last step's boundary-load work, which the next step sums)
     double external_work() const override { return frame_work_ + pressure_work_; }
     /// The history row and the rock's non-affine kinetic and elastic energies.
     Measurement measure() override;
@@ -103,6 +104,9 @@ namespace coupling
     std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
     double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]
     std::size_t n_global_pairs_ = 0;            // SPH pairs of the whole body
+    // distributed: this rank's share of the last step's boundary-load work, summed over the
+    // ranks with the next step's contact forces (pressure_work_ holds the sum before it) [J]
+    double pressure_work_pending_ = 0;
     std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
     std::unique_ptr<fem::SteelBody> top_, bottom_;
     std::unique_ptr<PenaltyContact> contact_top_, contact_bottom_;
