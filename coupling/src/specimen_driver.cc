@@ -1026,6 +1026,17 @@ namespace coupling
         r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
     }
     failure_->report(*body_, s, domain_.get());
+    if (domain_)
+    {
+      // what the split costs: ghosts held per particle of the body, and the bytes each step sends
+      // (the halo: positions and velocities of every ghost; the summed contact forces)
+      const std::vector<double> g =
+        domain_->sum({static_cast<double>(domain_->n_ghosts()), static_cast<double>(domain_->n_sent(6))});
+      s.extra.push_back({"ghost_fraction", g[0] / static_cast<double>(domain_->n_global())});
+      s.extra.push_back({"halo_bytes_per_step", 8.0 * g[1]});
+      s.extra.push_back({"allreduce_bytes_per_rank_per_step",
+                         8.0 * static_cast<double>(force_on_top_.size() + force_on_bottom_.size() + 7)});
+    }
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
     s.wall_seconds =
