@@ -6,8 +6,12 @@
 // order as the serial body (sph::Domain, sph::Body::set_chunks), so the particles move by the
 // serial bits; only sums over the particles (platen forces, energies, gauge strains) are added
 // rank by rank, a different rounding of ~1e-16 of the sum. history.csv prints 9 significant
-// digits, so each column may differ by 1e-9 of its largest magnitude and no more; the peak stress
-// (summary.json) is held to 1e-6 relative as the specification of distributed runs asks.
+// digits, so each column may differ by 1e-9 of its largest magnitude and no more, but for the
+// dissipated energy: it accumulates, step by step, sums over the pairs of viscous and hourglass
+// powers of both signs, whose rounding is relative to the sum of their magnitudes, not to the
+// result (3.8e-9 of the column's largest value measured with a 2 mm UCS over 2,337 steps on 2
+// ranks): 1e-6. The peak stress (summary.json) is held to 1e-6 relative as the specification of
+// distributed runs asks.
 #include "subprocess.h"
 
 #include <gtest/gtest.h>
@@ -49,7 +53,8 @@ namespace
     return h;
   }
 
-  /// Every column of `b` within 1e-9 of the largest |value| of that column of `a`.
+  /// Every column of `b` within 1e-9 of the largest |value| of that column of `a` (the dissipated
+  /// energy within 1e-6: see the file comment).
   ::testing::AssertionResult same_history(const History &a, const History &b)
   {
     if (a.columns != b.columns || a.rows.size() != b.rows.size())
@@ -59,8 +64,9 @@ namespace
       double scale = 0;
       for (const auto &r : a.rows)
         scale = std::max(scale, std::abs(r[c]));
+      const double tolerance = a.columns[c] == "dissipated_energy_J" ? 1e-6 : 1e-9;
       for (std::size_t k = 0; k < a.rows.size(); ++k)
-        if (std::abs(a.rows[k][c] - b.rows[k][c]) > 1e-9 * scale)
+        if (std::abs(a.rows[k][c] - b.rows[k][c]) > tolerance * scale)
           return ::testing::AssertionFailure()
                  << a.columns[c] << " differs at row " << k << ": " << a.rows[k][c] << " against "
                  << b.rows[k][c];
