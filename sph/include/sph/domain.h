@@ -58,8 +58,6 @@ namespace sph
     const std::vector<std::int32_t> &owned_indices() const { return owned_indices_; }
     /// Number of ghosts.
     std::size_t n_ghosts() const { return local_.size() - owned_indices_.size(); }
-    /// Doubles received per exchange of one value per ghost.
-    std::size_t n_ghost_values() const { return n_ghosts(); }
 
     /// Refreshes the ghosts' entries of `width` doubles each in `field` (one row per local
     /// particle) from their owners: one packed message per neighbouring rank, non-blocking.
