@@ -6,9 +6,11 @@
 // Exit status (docs/design.md): 0 done, 1 internal failure, 2 bad input (one line on stderr
 // naming the culprit and what is accepted), 3 unstable run.
 //
-// MPI: cosim initialises MPI and runs as one process without mpirun. Under `mpirun -np N` every
-// rank runs the same command; only rank 0 prints (the others' stdout and stderr go to
-// /dev/null) and writes files, and every rank ends with the same exit status.
+// MPI: under `mpirun -np N` (a launcher's environment) cosim initialises MPI and every rank runs
+// the same command; only rank 0 prints (the others' stdout and stderr go to /dev/null) and writes
+// files, and every rank ends with the same exit status. Started without a launcher it runs as one
+// process without initialising MPI at all: Open MPI's singleton start-up (a daemon and shared
+// memory files) fails under a file-size limit, and PETSc (cosim diagnose) initialises MPI itself.
 #include <app/calibrate_command.h>
 #include <app/cli.h>
 #include <app/diagnose_command.h>
@@ -96,26 +98,46 @@ namespace
   /// Ends the process with `status` after an error without running atexit handlers: a library
   /// (HDF5) whose file was left open by a failed write would otherwise flush it again at exit,
   /// into a folder already removed, and crash. Everything of ours is cleaned up by then.
+  /// Whether main initialised MPI (see MpiSession).
+  bool mpi_started_here = false;
+
   [[noreturn]] void exit_after_error(const int status)
   {
     std::fflush(stdout);
     std::fflush(stderr);
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    // bad input, an unstable or interrupted run: every rank gets there alike; anything else
-    // may have left the other ranks waiting in a collective
-    if (size > 1 && status == 1)
-      MPI_Abort(MPI_COMM_WORLD, status);
-    MPI_Finalize();
+    if (mpi_started_here) // (not MPI that PETSc started for cosim diagnose)
+    {
+      int size = 1;
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      // bad input, an unstable or interrupted run: every rank gets there alike; anything else
+      // may have left the other ranks waiting in a collective
+      if (size > 1 && status == 1)
+        MPI_Abort(MPI_COMM_WORLD, status);
+      MPI_Finalize();
+    }
     std::_Exit(status);
   }
 
-  /// MPI for the process's lifetime; on ranks other than 0, stdout and stderr go to /dev/null.
+  /// Whether an MPI launcher started this process (Open MPI's mpirun, or a PMI/PMIx one).
+  bool launched_by_mpirun()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+      if (std::getenv(name) != nullptr)
+        return true;
+    return false;
+  }
+
+  /// Under a launcher: MPI for the process's lifetime; on ranks other than 0, stdout and stderr
+  /// go to /dev/null. Otherwise nothing (one process, MPI not initialised).
   struct MpiSession
   {
     MpiSession(int &argc, char **&argv)
     {
-      int provided = 0;
+      if (!launched_by_mpirun())
+        return;
+      initialised      = true;
+      mpi_started_here = true;
+      int provided     = 0;
       MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
       MPI_Comm_rank(MPI_COMM_WORLD, &rank);
       MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -125,8 +147,13 @@ namespace
           std::_Exit(1);
       }
     }
-    ~MpiSession() { MPI_Finalize(); }
-    int rank = 0, size = 1;
+    ~MpiSession()
+    {
+      if (initialised)
+        MPI_Finalize();
+    }
+    bool initialised = false;
+    int  rank = 0, size = 1;
   };
 
   int run_command_line(const std::vector<std::string> &args, int n_ranks);
