@@ -5,6 +5,12 @@
 //
 // Exit status (docs/design.md): 0 done, 1 internal failure, 2 bad input (one line on stderr
 // naming the culprit and what is accepted), 3 unstable run.
+//
+// MPI: under `mpirun -np N` (a launcher's environment) cosim initialises MPI and every rank runs
+// the same command; only rank 0 prints (the others' stdout and stderr go to /dev/null) and writes
+// files, and every rank ends with the same exit status. Started without a launcher it runs as one
+// process without initialising MPI at all: Open MPI's singleton start-up (a daemon and shared
+// memory files) fails under a file-size limit, and PETSc (cosim diagnose) initialises MPI itself.
 #include <app/calibrate_command.h>
 #include <app/cli.h>
 #include <app/diagnose_command.h>
@@ -14,6 +20,9 @@
 #include <app/study.h>
 #include <coupling/errors.h>
 #include <diagnose/text_input.h>
+
+#include <mpi.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -92,17 +101,77 @@ namespace
   /// Ends the process with `status` after an error without running atexit handlers: a library
   /// (HDF5) whose file was left open by a failed write would otherwise flush it again at exit,
   /// into a folder already removed, and crash. Everything of ours is cleaned up by then.
+  /// Whether main initialised MPI (see MpiSession).
+  bool mpi_started_here = false;
+
   [[noreturn]] void exit_after_error(const int status)
   {
     std::fflush(stdout);
     std::fflush(stderr);
+    if (mpi_started_here) // (not MPI that PETSc started for cosim diagnose)
+    {
+      int size = 1;
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      // bad input, an unstable or interrupted run: every rank gets there alike; anything else
+      // may have left the other ranks waiting in a collective
+      if (size > 1 && status == 1)
+        MPI_Abort(MPI_COMM_WORLD, status);
+      MPI_Finalize();
+    }
     std::_Exit(status);
   }
+
+  /// Whether an MPI launcher started this process (Open MPI's mpirun, or a PMI/PMIx one).
+  bool launched_by_mpirun()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+      if (std::getenv(name) != nullptr)
+        return true;
+    return false;
+  }
+
+  /// Under a launcher: MPI for the process's lifetime; on ranks other than 0, stdout and stderr
+  /// go to /dev/null. Otherwise nothing (one process, MPI not initialised).
+  struct MpiSession
+  {
+    MpiSession(int &argc, char **&argv)
+    {
+      if (!launched_by_mpirun())
+        return;
+      initialised      = true;
+      mpi_started_here = true;
+      int provided     = 0;
+      MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      if (rank != 0)
+      {
+        if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+          std::_Exit(1);
+      }
+    }
+    ~MpiSession()
+    {
+      if (initialised)
+        MPI_Finalize();
+    }
+    bool initialised = false;
+    int  rank = 0, size = 1;
+  };
+
+  int run_command_line(const std::vector<std::string> &args, int n_ranks);
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  const MpiSession mpi(argc, argv);
+  return run_command_line(std::vector<std::string>(argv + 1, argv + argc), mpi.size);
+}
+
+namespace
+{
+  int run_command_line(const std::vector<std::string> &args, const int n_ranks)
+  {
   if (args.empty())
   {
     std::fputs(general_help().c_str(), stderr);
@@ -132,6 +201,12 @@ int main(int argc, char **argv)
     return 2;
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (n_ranks > 1 && std::string(command->name) != "run")
+  {
+    error_line(std::string("cosim ") + command->name + " runs on one MPI rank only (" +
+               std::to_string(n_ranks) + " given); run it without mpirun or with -np 1");
+    return 2;
+  }
   for (const auto &a : rest)
     if (a == "--help" || a == "-h")
     {
@@ -165,3 +240,4 @@ int main(int argc, char **argv)
   }
   return status;
 }
+} // namespace

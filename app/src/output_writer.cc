@@ -168,6 +168,11 @@ namespace app
     result("strain_rate_per_s", [](const Summary &r) { return value(r.strain_rate); });
     result("time_step_s", [](const Summary &r) { return value(r.time_step); });
     result("stop_reason", [](const Summary &r) { return text_or_null(r.stop_reason); });
+    if (s && !s->particles_per_rank.empty())
+    {
+      j["n_ranks"]            = s->particles_per_rank.size();
+      j["particles_per_rank"] = s->particles_per_rank;
+    }
     j["last_good_state"] = nullptr;
     if (end.last_good_step >= 0)
       j["last_good_state"] = Json{{"file", "last_good_state.h5"},

@@ -12,6 +12,8 @@
 #include <coupling/run_case.h>
 #include <diagnose/material_table.h>
 
+#include <mpi.h>
+
 #include <cctype>
 #include <chrono>
 #include <cstring>
@@ -333,6 +335,51 @@ namespace app
     return clip(out + "'");
   }
 
+  namespace
+  {
+    /// This process's MPI rank (0 where MPI is not initialised); every rank waits here until
+    /// all have checked their input, so that rank 0 writes nothing before.
+    int mpi_rank()
+    {
+      int initialised = 0, rank = 0, size = 1;
+      MPI_Initialized(&initialised);
+      if (!initialised)
+        return 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      if (size > 1)
+        MPI_Barrier(MPI_COMM_WORLD);
+      return rank;
+    }
+
+    /// What the ranks other than 0 observe: nothing but the stop signals (RunLoop agrees on a
+    /// stop over all ranks).
+    class WorkerObserver : public RunObserver
+    {
+    public:
+      bool stop_requested() override { return StopSignals::received() != 0; }
+    };
+
+    /// A rank other than 0: its part of the run, with rank 0's exit status.
+    int run_worker(const CaseFile &case_file, const StateArrays *resume)
+    {
+      WorkerObserver observer;
+      try
+      {
+        run_case(case_file.parameters, observer, resume);
+        return 0;
+      }
+      catch (const InstabilityError &)
+      {
+        return 3;
+      }
+      catch (const RunInterrupted &)
+      {
+        return 4;
+      }
+    }
+  } // namespace
+
   int run_into_folder(const CaseFile &case_file, const std::filesystem::path &target, const bool force,
                       const bool quiet, Summary *result, const std::string &restart,
                       std::filesystem::path *interrupted_into)
@@ -354,6 +401,10 @@ namespace app
     // Signals first: from the moment the folder is claimed, a SIGINT / SIGTERM / SIGHUP ends the
     // run through the checkpoint path, never with a half-written staging folder.
     const StopSignals stop_signals;
+    // MPI (mpirun -np N): every rank has checked the input alike; rank 0 writes, the others
+    // run their part of the body and write nothing
+    if (mpi_rank() != 0)
+      return run_worker(case_file, restart.empty() ? nullptr : &resume);
     // Everything checked: from here on we write, but only into the staging folder.
     ResultFolder folder(target, "run");
     const fs::path &staging = folder.staging();

@@ -4,6 +4,7 @@
 
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/domain.h>
 #include <sph/rate_strength.h>
 #include <sph/strength_scatter.h>
 
@@ -17,16 +18,91 @@
 
 namespace coupling
 {
-  double n_failed_particles(const sph::Body<3> &body)
+  int mpi_ranks()
+  {
+    int initialised = 0, finalised = 0;
+    MPI_Initialized(&initialised);
+    MPI_Finalized(&finalised);
+    if (!initialised || finalised)
+      return 1;
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    return size;
+  }
+
+  double n_failed_particles(const sph::Body<3> &body, const sph::Domain *domain)
   {
     double failed = 0;
+    if (domain)
+    {
+      for (const std::int32_t i : domain->owned_indices())
+        failed += body.damage(i) >= 1.0 ? 1.0 : 0.0;
+      return domain->sum(failed);
+    }
     for (unsigned int i = 0; i < body.n_particles(); ++i)
       failed += body.damage(i) >= 1.0 ? 1.0 : 0.0;
     return failed;
   }
 
-  double non_affine_kinetic_energy(const sph::Body<3> &body)
+  namespace
   {
+    /// non_affine_kinetic_energy of a distributed body: the same sums over the owned particles,
+    /// each summed over the ranks.
+    double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain &domain)
+    {
+      const auto &x = body.positions();
+      const auto &v = body.velocities();
+      const auto &m = body.masses();
+      std::vector<double> c(4, 0.0);
+      for (const std::int32_t i : domain.owned_indices())
+      {
+        for (int d = 0; d < 3; ++d)
+          c[d] += m[i] * x[i][d];
+        c[3] += m[i];
+      }
+      c = domain.sum(c);
+      const double mass = c[3];
+      if (mass <= 0)
+        return 0;
+      const Eigen::Vector3d centre = Eigen::Vector3d(c[0], c[1], c[2]) / mass;
+      std::vector<double> ab(16 + 12, 0.0);
+      for (const std::int32_t i : domain.owned_indices())
+      {
+        const Eigen::Vector4d phi(1, x[i][0] - centre[0], x[i][1] - centre[1], x[i][2] - centre[2]);
+        for (int r = 0; r < 4; ++r)
+        {
+          for (int k = 0; k < 4; ++k)
+            ab[4 * r + k] += m[i] * phi[r] * phi[k];
+          for (int d = 0; d < 3; ++d)
+            ab[16 + 3 * r + d] += m[i] * phi[r] * v[i][d];
+        }
+      }
+      ab = domain.sum(ab);
+      Eigen::Matrix4d A;
+      Eigen::Matrix<double, 4, 3> b;
+      for (int r = 0; r < 4; ++r)
+      {
+        for (int k = 0; k < 4; ++k)
+          A(r, k) = ab[4 * r + k];
+        for (int d = 0; d < 3; ++d)
+          b(r, d) = ab[16 + 3 * r + d];
+      }
+      const Eigen::Matrix<double, 4, 3> fit_coefficients = A.ldlt().solve(b);
+      double energy = 0;
+      for (const std::int32_t i : domain.owned_indices())
+      {
+        const Eigen::Vector4d phi(1, x[i][0] - centre[0], x[i][1] - centre[1], x[i][2] - centre[2]);
+        const Eigen::RowVector3d fit = phi.transpose() * fit_coefficients;
+        energy += 0.5 * m[i] * (Eigen::RowVector3d(v[i][0], v[i][1], v[i][2]) - fit).squaredNorm();
+      }
+      return domain.sum(energy);
+    }
+  } // namespace
+
+  double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain *domain)
+  {
+    if (domain)
+      return non_affine_kinetic_energy(body, *domain);
     const auto &x = body.positions();
     const auto &v = body.velocities();
     const auto &m = body.masses();
@@ -103,8 +179,48 @@ namespace coupling
     return body;
   }
 
-  ParticleSnapshot particle_snapshot(const sph::Body<3> &body)
+  ParticleSnapshot particle_snapshot(const sph::Body<3> &body, const sph::Domain *domain)
   {
+    if (domain)
+    {
+      // every local particle's row of 17 values, the owned ones gathered in global order
+      constexpr int w = 17;
+      const unsigned int n_local = body.n_particles();
+      std::vector<double> rows(static_cast<std::size_t>(w) * n_local);
+      const auto &x  = body.positions();
+      const auto &v  = body.velocities();
+      const auto &x0 = body.reference_positions();
+      for (unsigned int i = 0; i < n_local; ++i)
+      {
+        double *r = &rows[static_cast<std::size_t>(w) * i];
+        for (int d = 0; d < 3; ++d)
+        {
+          r[d]     = x[i][d];
+          r[3 + d] = v[i][d];
+          r[6 + d] = x[i][d] - x0[i][d];
+        }
+        const auto &t = body.stress3(i);
+        const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
+        std::copy(s6, s6 + 6, r + 9);
+        r[15] = body.plastic_strain(i);
+        r[16] = body.damage(i);
+      }
+      const std::vector<double> all = domain->gather(rows.data(), w);
+      ParticleSnapshot s;
+      const std::size_t n = domain->n_global();
+      s.n = n;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double *r = &all[w * i];
+        s.position.insert(s.position.end(), r, r + 3);
+        s.velocity.insert(s.velocity.end(), r + 3, r + 6);
+        s.displacement.insert(s.displacement.end(), r + 6, r + 9);
+        s.stress.insert(s.stress.end(), r + 9, r + 15);
+        s.plastic_strain.push_back(r[15]);
+        s.damage.push_back(r[16]);
+      }
+      return s;
+    }
     ParticleSnapshot s;
     const unsigned int n = body.n_particles();
     s.n                  = n;

@@ -20,6 +20,7 @@ namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 
 namespace fem
@@ -30,8 +31,9 @@ namespace fem
 namespace coupling
 {
   /// Positions, velocities, displacements, stress (Voigt order xx yy zz yz xz xy), plastic strain
-  /// and damage of every particle.
-  ParticleSnapshot particle_snapshot(const sph::Body<3> &body);
+  /// and damage of every particle. With `domain` (a distributed body): of the whole body, in
+  /// global order, on every rank (collective).
+  ParticleSnapshot particle_snapshot(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
   /// The SPH numerics the body takes: the case's own, with TSSFAC capped at 1 (a driver scales a
   /// larger step itself).
@@ -46,14 +48,19 @@ namespace coupling
   std::unique_ptr<sph::Body<3>> make_rock_body(const CaseParameters &p, const sph::Lattice<3> &lattice,
                                                double strain_rate = 0.0);
 
+  /// Number of MPI ranks of the run: the size of MPI_COMM_WORLD, 1 where MPI is not initialised
+  /// (a library user's serial program).
+  int mpi_ranks();
+
   /// Number of particles of `body` that have failed (damage 1), as history.csv counts them.
-  double n_failed_particles(const sph::Body<3> &body);
+  /// With `domain`: of the whole body (collective); the same below.
+  double n_failed_particles(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
   /// Kinetic energy of the body's motion other than a homogeneous deformation: of v - (a + B x),
   /// with a, B the mass-weighted least-squares affine fit of the velocity field [J]. A specimen
   /// loaded quasi-statically moves affinely (rigid motion plus a uniform strain rate), so what
   /// is left are its waves and vibrations.
-  double non_affine_kinetic_energy(const sph::Body<3> &body);
+  double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
   /// The FEM body (platen or cutter) of Platens/*: model, steel, and the element size, which
   /// is Platens/Element size where set, else `default_element_size` [m].

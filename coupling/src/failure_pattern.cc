@@ -1,6 +1,7 @@
 #include "failure_pattern.h"
 
 #include <sph/body.h>
+#include <sph/domain.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,10 +18,13 @@ namespace coupling
   } // namespace
 
   FailureWatch::FailureWatch(const sph::Body<3> &body, const bool disc)
+    : FailureWatch(body.reference_positions(), body.volumes(), disc)
+  {}
+
+  FailureWatch::FailureWatch(const std::vector<sph::Vector<3>> &x0, const std::vector<double> &v0,
+                             const bool disc)
     : disc_(disc)
   {
-    const auto &x0 = body.reference_positions();
-    const auto &v0 = body.volumes();
     double volume  = 0;
     for (std::size_t i = 0; i < x0.size(); ++i)
     {
@@ -39,21 +43,28 @@ namespace coupling
     }
   }
 
-  void FailureWatch::observe(const sph::Body<3> &body, const double stress)
+  void FailureWatch::observe(const sph::Body<3> &body, const double stress,
+                             const sph::Domain *domain)
   {
     if (started_)
       return;
     const auto &x0 = body.reference_positions();
     double r = 0, z = 0, n = 0;
+    const std::uint8_t *owned = domain ? domain->owned().data() : nullptr;
     for (unsigned int i = 0; i < body.n_particles(); ++i)
     {
-      if (body.damage(i) <= 0)
+      if (body.damage(i) <= 0 || (owned && !owned[i]))
         continue;
       const auto &p = x0[i];
       r += disc_ ? std::hypot(p[0] - centre_[0], p[2] - centre_[2])
                  : std::hypot(p[0] - centre_[0], p[1] - centre_[1]);
       z += std::abs(p[2] - centre_[2]);
       n += 1;
+    }
+    if (domain)
+    {
+      const std::vector<double> all = domain->sum({r, z, n});
+      r = all[0], z = all[1], n = all[2];
     }
     if (n == 0)
       return;
@@ -63,8 +74,9 @@ namespace coupling
     onset_height_ = z / n / half_length_;
   }
 
-  void FailureWatch::report(const sph::Body<3> &body, Summary &s) const
+  void FailureWatch::report(const sph::Body<3> &body, Summary &s, const sph::Domain *domain) const
   {
+    const std::uint8_t *owned = domain ? domain->owned().data() : nullptr;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     s.extra.emplace_back("failure_onset_stress_MPa", started_ ? onset_stress_ / 1e6 : nan);
     s.extra.emplace_back("failure_onset_radius_ratio", started_ ? onset_radius_ : nan);
@@ -77,6 +89,8 @@ namespace coupling
     double n = 0, sx = 0, sz = 0, sxx = 0, szz = 0;
     for (unsigned int i = 0; i < body.n_particles(); ++i)
     {
+      if (owned && !owned[i])
+        continue;
       v_all += v0[i];
       if (body.damage(i) < damaged)
         continue;
@@ -88,11 +102,24 @@ namespace coupling
       sxx += x * x;
       szz += z * z;
     }
+    if (domain)
+    {
+      const std::vector<double> all = domain->sum({v_all, v_failed, n, sx, sz, sxx, szz});
+      v_all = all[0], v_failed = all[1], n = all[2], sx = all[3], sz = all[4], sxx = all[5],
+      szz = all[6];
+    }
     s.extra.emplace_back("damaged_volume_fraction", v_failed / v_all);
     // particles per failure mode (sph::FailureMode)
     double count[4] = {0, 0, 0, 0};
     for (unsigned int i = 0; i < body.n_particles(); ++i)
-      count[static_cast<int>(body.history(i).failure_mode)] += 1;
+      if (!owned || owned[i])
+        count[static_cast<int>(body.history(i).failure_mode)] += 1;
+    if (domain)
+    {
+      const std::vector<double> all = domain->sum({count[0], count[1], count[2], count[3]});
+      for (int k = 0; k < 4; ++k)
+        count[k] = all[k];
+    }
     s.extra.emplace_back("failure_mode_none", count[0]);
     s.extra.emplace_back("failure_mode_tensile", count[1]);
     s.extra.emplace_back("failure_mode_shear", count[2]);

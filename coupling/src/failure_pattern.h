@@ -7,12 +7,15 @@
 
 #include <coupling/run_output.h>
 
+#include <sph/types.h>
+
 #include <vector>
 
 namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 
 namespace coupling
@@ -24,10 +27,14 @@ namespace coupling
     /// `disc`: BTS (distances in the disc's x-z plane); else a cylinder (radial distances in x-y).
     /// The centre and radius are taken from the body's reference positions.
     FailureWatch(const sph::Body<3> &body, bool disc);
+    /// The same from the whole body's reference positions [m] and volumes [m^3] (a distributed
+    /// body, whose parts hold only some of the particles).
+    FailureWatch(const std::vector<sph::Vector<3>> &x0, const std::vector<double> &v0, bool disc);
 
     /// Call at every history row: the first call that finds a damaged particle (damage > 0)
-    /// records where the damage started and the specimen stress then [Pa].
-    void observe(const sph::Body<3> &body, double stress);
+    /// records where the damage started and the specimen stress then [Pa]. With `domain` (a
+    /// distributed body): over the owned particles of every rank (collective); also report.
+    void observe(const sph::Body<3> &body, double stress, const sph::Domain *domain = nullptr);
 
     /// Adds to s.extra: failure_onset_stress_MPa, failure_onset_radius_ratio (mean distance of
     /// the first damaged particles from the centre / radius: disc plane for BTS, from the axis
@@ -36,7 +43,7 @@ namespace coupling
     /// deviation along the loaded diameter / across it, of the particles with damage >= 0.5).
     /// NaN where nothing was damaged. Then failure_mode_none, _tensile, _shear and _crushed:
     /// the number of particles that failed each way (sph::FailureMode) at the end.
-    void report(const sph::Body<3> &body, Summary &s) const;
+    void report(const sph::Body<3> &body, Summary &s, const sph::Domain *domain = nullptr) const;
 
     /// The watch's state, for checkpoints.
     std::vector<double> state() const;

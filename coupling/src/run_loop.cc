@@ -6,6 +6,7 @@
 
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/domain.h>
 
 #include <omp.h>
 
@@ -29,17 +30,23 @@ namespace coupling
     void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
                             const std::size_t n_steps, const double time,
                             std::chrono::steady_clock::time_point &last_checkpoint,
-                            const SaveState &save_state)
+                            const SaveState &save_state, const bool *agreed)
     {
       const auto now = std::chrono::steady_clock::now();
-      const bool stop_asked =
+      bool stop_asked =
         observer.stop_requested() || (output.stop_after_steps > 0 &&
                                       n_steps == static_cast<std::size_t>(output.stop_after_steps));
       const bool by_steps = output.checkpoint_steps > 0 &&
                             n_steps % static_cast<std::size_t>(output.checkpoint_steps) == 0;
-      const bool by_time = output.checkpoint_minutes > 0 &&
-                           std::chrono::duration<double>(now - last_checkpoint).count() >=
-                             60.0 * output.checkpoint_minutes;
+      bool by_time = output.checkpoint_minutes > 0 &&
+                     std::chrono::duration<double>(now - last_checkpoint).count() >=
+                       60.0 * output.checkpoint_minutes;
+      if (agreed) // distributed: what all ranks agreed (a signal or a clock of any rank)
+      {
+        stop_asked = agreed[0] || (output.stop_after_steps > 0 &&
+                                   n_steps == static_cast<std::size_t>(output.stop_after_steps));
+        by_time    = agreed[1];
+      }
       if (stop_asked || by_steps || by_time)
       {
         StateArrays state;
@@ -81,7 +88,8 @@ namespace coupling
     }
     check_stability(observer); // the start (or the restored state) is the first good state
 
-    auto last_checkpoint = std::chrono::steady_clock::now();
+    auto &last_checkpoint = last_checkpoint_;
+    last_checkpoint       = std::chrono::steady_clock::now();
     std::string reason;
     while (true)
     {
@@ -117,6 +125,7 @@ namespace coupling
         next_snap_ += schedule_.snapshot_interval;
       }
       const std::size_t n = test_.n_steps();
+      const bool agreed[2] = {agreed_stop_, agreed_by_time_};
       if (n % 20 == 0 || stop)
         observer.progress(n, t, std::min(1.0, t / schedule_.progress_time));
       if (stop)
@@ -124,7 +133,8 @@ namespace coupling
 
       // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
       checkpoint_or_stop(observer, output_, n, t, last_checkpoint,
-                         [this](StateArrays &state) { save_state(state); });
+                         [this](StateArrays &state) { save_state(state); },
+                         watch_.domain ? agreed : nullptr);
     }
     return reason;
   }
@@ -178,6 +188,19 @@ namespace coupling
     }
     os << "; likely cause: " << cause << "; last good state: step " << last_good_step_
        << ", t = " << last_good_time_ << " s";
+    if (const sph::Domain *domain = watch_.domain) // (every rank fails at the same step)
+    {
+      ParticleSnapshot all;
+      all.n            = domain->n_global();
+      all.position     = domain->gather(last_good_.position.data(), 3);
+      all.velocity     = domain->gather(last_good_.velocity.data(), 3);
+      all.displacement = domain->gather(last_good_.displacement.data(), 3);
+      all.stress       = domain->gather(last_good_.stress.data(), 6);
+      all.plastic_strain = domain->gather(last_good_.plastic_strain.data(), 1);
+      all.damage         = domain->gather(last_good_.damage.data(), 1);
+      observer.last_good_state(last_good_step_, last_good_time_, all);
+      throw InstabilityError(os.str());
+    }
     observer.last_good_state(last_good_step_, last_good_time_, last_good_);
     throw InstabilityError(os.str());
   }
@@ -205,12 +228,17 @@ namespace coupling
       unsigned int i_dt = 0, i_v = 0;
     };
     std::vector<Scan> scans(static_cast<std::size_t>(omp_get_max_threads()));
+    // a distributed rock: the owned particles only (the outer ghosts' state is not computed)
+    const sph::Domain *parts    = watch_.domain;
+    const std::uint8_t *owned   = parts ? parts->owned().data() : nullptr;
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), nt = omp_get_num_threads();
       Scan &r = scans[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
+        if (owned && !owned[i])
+          continue;
         const auto &s3 = body.stress3(i);
         const bool finite =
           std::isfinite(x[i][0] + x[i][1] + x[i][2] + v[i][0] + v[i][1] + v[i][2]) &&
@@ -261,10 +289,101 @@ namespace coupling
         i_dt   = r.i_dt;
       }
     }
+    if (parts)
+    {
+      // every rank's scan; the first bad particle of the lowest rank, the kinetic energy summed
+      // in rank order, the fastest particle and the smallest step over all ranks
+      long bad = -1;
+      bool bad_finite = true;
+      for (const Scan &r : scans)
+        if (r.bad >= 0)
+        {
+          bad        = r.bad;
+          bad_finite = r.bad_finite;
+          break;
+        }
+      const auto gid = [&](const long i) { return static_cast<double>(parts->global_ids()[i]); };
+      // (with the wishes to stop or to checkpoint by the clock: one collective a step)
+      const OutputParameters &output = output_;
+      const bool by_time =
+        output.checkpoint_minutes > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_).count() >=
+          60.0 * output.checkpoint_minutes;
+      std::vector<double> mine = {bad >= 0 ? gid(bad) : -1.0, bad_finite ? 1.0 : 0.0, 0, 0, 0,
+                                  kinetic, dt_min, gid(i_dt), v[i_dt].norm(), h[i_dt], v_max,
+                                  gid(i_v), 0, 0, 0, observer.stop_requested() ? 1.0 : 0.0,
+                                  by_time ? 1.0 : 0.0};
+      if (bad >= 0)
+        for (int d = 0; d < 3; ++d)
+          mine[2 + d] = x[bad][d];
+      for (int d = 0; d < 3; ++d)
+        mine[12 + d] = x[i_v][d];
+      constexpr std::size_t w = 17;
+      const std::vector<double> all = parts->all_gather(mine);
+      agreed_stop_ = agreed_by_time_ = false;
+      for (std::size_t k = 0; k < all.size(); k += w)
+      {
+        agreed_stop_    = agreed_stop_ || all[k + 15] != 0.0;
+        agreed_by_time_ = agreed_by_time_ || all[k + 16] != 0.0;
+      }
+      kinetic = 0;
+      dt_min  = 1e300;
+      v_max   = 0;
+      std::size_t at_dt = 0, at_v = 0, at_bad = all.size();
+      for (std::size_t k = 0; k < all.size(); k += w)
+      {
+        if (all[k] >= 0 && at_bad == all.size())
+          at_bad = k;
+        kinetic += all[k + 5];
+        if (all[k + 6] < dt_min)
+          dt_min = all[k + 6], at_dt = k;
+        if (all[k + 10] > v_max)
+          v_max = all[k + 10], at_v = k;
+      }
+      auto where = [&](const std::size_t k, const int first) {
+        std::ostringstream os;
+        os << " at particle " << static_cast<long>(all[k]) << " (" << all[k + first] << ", "
+           << all[k + first + 1] << ", " << all[k + first + 2] << ") m";
+        return os.str();
+      };
+      if (at_bad < all.size())
+      {
+        if (all[at_bad + 1] == 0.0)
+          fail(observer, "non-finite position, velocity, stress or smoothing length" + where(at_bad, 2),
+               -1, too_large);
+        fail(observer, "a particle left the domain (|x| >= " + std::to_string(domain) + " m)" +
+                         where(at_bad, 2),
+             -1, too_large + ", or a loading body that lost contact");
+      }
+      const double work = std::max(0.0, test_.external_work());
+      if (kinetic > 10.0 * (work + watch_.energy_floor))
+      {
+        std::ostringstream os;
+        os << "rock kinetic energy " << kinetic << " J above ten times the work done on it plus "
+           << "the start-up allowance (" << work << " + " << watch_.energy_floor
+           << " J), fastest particle |v| = " << v_max << " m/s";
+        std::ostringstream at;
+        at << " (particle " << static_cast<long>(all[at_v + 11]) << " at (" << all[at_v + 12] << ", "
+           << all[at_v + 13] << ", " << all[at_v + 14] << ") m)";
+        fail(observer, os.str() + at.str(), -1, too_large);
+      }
+      const double dt_stable = watch_.tssfac * dt_min;
+      if (dt_stable < 0.5 * watch_.time_step)
+      {
+        std::ostringstream os;
+        os << "collapsing time step: the stable step " << dt_stable << " s fell below half the step "
+           << "in use " << watch_.time_step << " s (|v| = " << all[at_dt + 8]
+           << " m/s, h = " << all[at_dt + 9] << " m, particle " << static_cast<long>(all[at_dt + 7])
+           << ")";
+        fail(observer, os.str(), -1, too_large);
+      }
+      i_dt = i_v = 0;
+      dt_min = 1e300; // checked above
+    }
     // a stable run never holds more kinetic energy than the work done on it (energy balance);
     // the floor covers the start, when that work is still tiny
     const double work = std::max(0.0, test_.external_work());
-    if (kinetic > 10.0 * (work + watch_.energy_floor))
+    if (!parts && kinetic > 10.0 * (work + watch_.energy_floor))
     {
       std::ostringstream os;
       os << "rock kinetic energy " << kinetic << " J above ten times the work done on it plus "

@@ -19,6 +19,7 @@
 #include <coupling/run_output.h>
 
 #include <cstddef>
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,7 @@ namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 namespace fem
 {
@@ -86,6 +88,9 @@ namespace coupling
   struct StabilityWatch
   {
     const sph::Body<3> *rock = nullptr;
+    /// A distributed rock: this rank's part (the checks then scan the owned particles and
+    /// agree over the ranks); null on one rank.
+    const sph::Domain *domain = nullptr;
     /// The steel bodies, each with its name in messages ("top platen", "cutter").
     std::vector<std::pair<std::string, const fem::SteelBody *>> steel;
     double domain_size  = 0; ///< a particle with |x_d| >= this has left the domain [m]
@@ -135,6 +140,10 @@ namespace coupling
     double next_row_ = 0, next_snap_ = 0; ///< times of the next history row and snapshot [s]
     ParticleSnapshot last_good_;
     std::size_t last_good_step_ = 0;
+    // distributed runs: the stop and time-checkpoint wishes of all ranks, agreed by
+    // check_stability's one collective of the step (the same on every rank)
+    std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
+    bool agreed_stop_ = false, agreed_by_time_ = false;
     double last_good_time_      = 0;
   };
 } // namespace coupling

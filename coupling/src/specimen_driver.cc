@@ -9,6 +9,7 @@
 #include <fem/load_frame.h>
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/domain.h>
 #include <sph/lattice.h>
 
 
@@ -128,23 +129,98 @@ namespace coupling
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
     contact_radius_               = 0.5 * lattice.cell_size[2];
-    body_                         = make_rock_body(prm_, lattice, plan_.strain_rate);
-    failure_ = std::make_unique<FailureWatch>(*body_, bts_);
-    // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
-    if (!bts_ && prm_.loaded_face_correction)
+    x0_global_                    = lattice.positions;
+    const int n_ranks             = mpi_ranks();
+    if (n_ranks > 1)
     {
-      body_->add_loaded_face(sph::Vector<3>(0, 0, 1));
-      body_->add_loaded_face(sph::Vector<3>(0, 0, -1));
+      // this rank's subdomain: its particles and the ghosts within three neighbour hops (an
+      // owned particle's force needs its neighbours' stress, whose deformation gradient needs
+      // theirs; a loaded-face column's outer particle lies up to two hops away), kept in global
+      // order so that every sum over the neighbours runs as in the serial body
+      const std::vector<int> owners = sph::bisection_owners<3>(lattice.positions, n_ranks);
+      int rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      const double radius = 2.0 * (prm_.sph.cslh * dx); // sph::Body's pair cut-off
+      domain_ = std::make_unique<sph::Domain>(
+        MPI_COMM_WORLD, owners,
+        sph::local_particles<3>(lattice.positions, owners, rank, radius, 3));
+      sph::Lattice<3> part = lattice;
+      part.positions.clear();
+      part.volumes.clear();
+      for (const std::int32_t g : domain_->global_ids())
+      {
+        part.positions.push_back(lattice.positions[g]);
+        part.volumes.push_back(lattice.volumes[g]);
+      }
+      body_ = make_rock_body(prm_, part, plan_.strain_rate);
+      body_->set_owned(domain_->owned());
+      {
+        sph::Vector<3> lo = lattice.positions[0], hi = lo; // as sph::Body finds its centre
+        for (const auto &X : lattice.positions)
+        {
+          lo = lo.cwiseMin(X);
+          hi = hi.cwiseMax(X);
+        }
+        body_->set_reference_centre(0.5 * (lo + hi));
+      }
+      // the chunks of the serial body (its pair loops add every sum in their order): from the
+      // owned particles' pair counts, which are complete
+      std::vector<double> count(body_->n_particles(), 0.0);
+      for (const std::int32_t i : domain_->owned_indices())
+        count[i] = body_->n_pairs_as_first(i);
+      const std::vector<double> all = domain_->gather(count.data(), 1);
+      std::vector<std::int64_t> pair_begin(all.size() + 1, 0);
+      for (std::size_t i = 0; i < all.size(); ++i)
+        pair_begin[i + 1] = pair_begin[i] + static_cast<std::int64_t>(all[i]);
+      n_global_pairs_ = static_cast<std::size_t>(pair_begin.back());
+      const std::vector<std::int32_t> starts = sph::Body<3>::work_chunks(pair_begin, prm_.sph.chunks);
+      std::vector<std::int32_t> chunk_of;
+      for (const std::int32_t g : domain_->global_ids())
+        chunk_of.push_back(
+          static_cast<std::int32_t>(std::upper_bound(starts.begin(), starts.end(), g) - starts.begin()) - 1);
+      body_->set_chunks(chunk_of);
+      failure_ = std::make_unique<FailureWatch>(lattice.positions, lattice.volumes, bts_);
+      if (!bts_ && prm_.loaded_face_correction)
+      {
+        double top = -1e300, bottom = -1e300;
+        for (const auto &p : lattice.positions)
+        {
+          top    = std::max(top, p[2]);
+          bottom = std::max(bottom, -p[2]);
+        }
+        body_->add_loaded_face(sph::Vector<3>(0, 0, 1), top);
+        body_->add_loaded_face(sph::Vector<3>(0, 0, -1), bottom);
+      }
+      owned_x_.resize(3 * domain_->owned_indices().size());
+      owned_v_.resize(owned_x_.size());
+      owned_m_.clear();
+      for (const std::int32_t i : domain_->owned_indices())
+        owned_m_.push_back(body_->masses()[i]);
     }
-    const std::size_t n = body_->n_particles();
+    else
+    {
+      body_    = make_rock_body(prm_, lattice, plan_.strain_rate);
+      failure_ = std::make_unique<FailureWatch>(*body_, bts_);
+      // UCS/CTCS: the platens load the flat end faces (see sph::Body::add_loaded_face)
+      if (!bts_ && prm_.loaded_face_correction)
+      {
+        body_->add_loaded_face(sph::Vector<3>(0, 0, 1));
+        body_->add_loaded_face(sph::Vector<3>(0, 0, -1));
+      }
+    }
+    const std::size_t n = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     force_on_particles_.assign(3 * n, 0.0);
     domain_size_ = 3.0 * std::max(prm_.diameter, prm_.length);
     // kinetic-energy bound of the stability check: a stable run never holds more kinetic energy
     // than the work done on it (energy balance); the floor covers the start, when that work is
     // still tiny: the whole rock moving at the final platen speed
     double rock_mass = 0;
-    for (const double m : body_->masses())
-      rock_mass += m;
+    if (domain_) // the masses of the whole body, as sph::Body computes them
+      for (const double v : lattice.volumes)
+        rock_mass += prm_.rock.density * v;
+    else
+      for (const double m : body_->masses())
+        rock_mass += m;
     energy_floor_ = 0.5 * rock_mass * plan_.platen_speed * plan_.platen_speed;
   }
 
@@ -219,7 +295,7 @@ namespace coupling
       // needs a vertical clearance r_c sqrt(1 + m^2)
       const double r_c = contact_radius_;
       top_z = -1e300, bottom_z = 1e300;
-      for (const auto &p : body_->positions())
+      for (const auto &p : x0_global_) // (the particles are at their reference positions)
       {
         const auto [z, m]     = face_at(p[0]);
         const double clearance = r_c * std::sqrt(1.0 + m * m);
@@ -236,7 +312,7 @@ namespace coupling
       // of half of that), so its platens stay at 0 and L; slack: round-off of the coordinates.
       const double slack = 1e-9 * dx;
       double       hi = -1e300, lo = 1e300;
-      for (const auto &p : body_->positions())
+      for (const auto &p : x0_global_)
       {
         hi = std::max(hi, p[2] + contact_radius_);
         lo = std::min(lo, p[2] - contact_radius_);
@@ -292,10 +368,16 @@ namespace coupling
   void SpecimenDriver::choose_time_step()
   {
     time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
-    const double dt_sph = body_->stable_time_step() * time_step_scale_;
+    const double dt_sph = (domain_ ? domain_->min(body_->stable_time_step()) :
+                                     body_->stable_time_step()) *
+                          time_step_scale_;
     // loaded faces: each outer particle is pressed in proportion to the area it carries, so a
-    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas)
-    const auto &area = body_->loaded_face_areas();
+    // uniform platen displacement gives a uniform stress (see sph::Body::loaded_face_areas);
+    // distributed: the owned particles' areas of all ranks in global order (the same sum)
+    const std::vector<double> area =
+      domain_ && !body_->loaded_face_areas().empty() ?
+        domain_->gather(body_->loaded_face_areas().data(), 1) :
+        body_->loaded_face_areas();
     std::vector<double> factor;
     double largest_factor = 1.0;
     if (!area.empty())
@@ -332,7 +414,8 @@ namespace coupling
                        " s) with the platen's mass; use a smaller stiffness (laboratory frames: about 1e8-1e10 N/m)");
 
     const auto &m           = body_->masses();
-    const double m_particle = *std::min_element(m.begin(), m.end());
+    const double m_particle = domain_ ? domain_->min(*std::min_element(m.begin(), m.end())) :
+                                        *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
     if (!top_->is_rigid())
     {
@@ -347,8 +430,16 @@ namespace coupling
     cp.radius           = contact_radius_;
     cp.method           = prm_.platens.contact_method;
     cp.bonded           = prm_.platens.bonded;
-    contact_top_    = std::make_unique<PenaltyContact>(cp, body_->n_particles());
-    contact_bottom_ = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
+    contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
+    contact_bottom_ = std::make_unique<PenaltyContact>(cp, n_contact);
+    if (!factor.empty() && domain_) // the owned particles' factors
+    {
+      std::vector<double> mine;
+      for (const std::int32_t i : domain_->owned_indices())
+        mine.push_back(factor[domain_->global_ids()[i]]);
+      factor.swap(mine);
+    }
     if (!factor.empty())
     {
       contact_top_->set_stiffness_factors(factor);
@@ -358,7 +449,7 @@ namespace coupling
 
   void SpecimenDriver::select_gauges()
   {
-    const auto &x0  = body_->reference_positions();
+    const auto &x0  = x0_global_; // (global indices; distributed: made local below)
     const double dx = prm_.sph.spacing;
     if (bts_)
       return;
@@ -386,6 +477,23 @@ namespace coupling
     for (unsigned int i : mid)
       if (std::hypot(x0[i][0], x0[i][1]) > r_max - 0.75 * dx)
         gauge_ring_.push_back(i);
+    gauge_counts_[0] = static_cast<double>(gauge_low_.size());
+    gauge_counts_[1] = static_cast<double>(gauge_high_.size());
+    gauge_counts_[2] = static_cast<double>(gauge_ring_.size());
+    if (domain_) // the owned members, as local indices
+    {
+      std::vector<std::int32_t> local_of(x0.size(), -1);
+      for (const std::int32_t i : domain_->owned_indices())
+        local_of[domain_->global_ids()[i]] = i;
+      for (auto *set : {&gauge_low_, &gauge_high_, &gauge_ring_})
+      {
+        std::vector<unsigned int> mine;
+        for (const unsigned int g : *set)
+          if (local_of[g] >= 0)
+            mine.push_back(static_cast<unsigned int>(local_of[g]));
+        set->swap(mine);
+      }
+    }
   }
 
   void SpecimenDriver::step()
@@ -399,8 +507,10 @@ namespace coupling
     const ContactSurface s_top = contact_surface(*top_), s_bottom = contact_surface(*bottom_);
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
-    ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(), body_->n_particles()};
-    if (prm_.platens.contact_method == ContactMethod::kinematic)
+    ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
+                               body_->n_particles()};
+    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
+    if (kinematic)
     {
       // the force of this step before contact, to predict where the step ends
       const auto &fi = body_->internal_forces(), &fp = body_->pressure_forces();
@@ -411,22 +521,58 @@ namespace coupling
           force_before_contact_[3 * i + d] = fi[i][d] + fp[i][d] + fe[i][d];
       particles.force = force_before_contact_.data();
     }
+    if (domain_) // the owned particles only, packed
+    {
+      const auto &owned = domain_->owned_indices();
+      owned_f_.resize(kinematic ? owned_x_.size() : 0);
+      for (std::size_t k = 0; k < owned.size(); ++k)
+        for (int d = 0; d < 3; ++d)
+        {
+          owned_x_[3 * k + d] = x[owned[k]][d];
+          owned_v_[3 * k + d] = v[owned[k]][d];
+          if (kinematic)
+            owned_f_[3 * k + d] = force_before_contact_[3 * owned[k] + d];
+        }
+      particles = ContactParticles{owned_x_.data(), owned_v_.data(), owned_m_.data(), owned.size()};
+      if (kinematic)
+        particles.force = owned_f_.data();
+    }
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
     std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);
     contact_top_->apply(particles, s_top, dt_, force_on_particles_, force_on_top_);
     contact_bottom_->apply(particles, s_bottom, dt_, force_on_particles_, force_on_bottom_);
-    max_exchange_imbalance_ = std::max(max_exchange_imbalance_, exchange_imbalance());
+    max_exchange_imbalance_ =
+      std::max(max_exchange_imbalance_, domain_ ? reduce_contact_forces() : exchange_imbalance());
 
     // SPH <- contact forces; FEM <- their reactions (the sums cancel to round-off)
     auto &f_ext = body_->external_forces();
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      for (int d = 0; d < 3; ++d)
-        f_ext[i][d] += force_on_particles_[3 * i + d];
+    if (domain_)
+    {
+      const auto &owned = domain_->owned_indices();
+      for (std::size_t k = 0; k < owned.size(); ++k)
+        for (int d = 0; d < 3; ++d)
+          f_ext[owned[k]][d] += force_on_particles_[3 * k + d];
+    }
+    else
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        for (int d = 0; d < 3; ++d)
+          f_ext[i][d] += force_on_particles_[3 * i + d];
     body_->integrate(dt_);
 
     // work of the boundary loads (confining pressure, loaded-face correction) over this step,
     // with the half-step velocities
+    if (domain_)
+    {
+      const auto &fp = body_->pressure_forces();
+      double w       = 0;
+      for (const std::int32_t i : domain_->owned_indices())
+        w += fp[i].dot(v[i]);
+      pressure_work_pending_ += w * dt_; // summed over the ranks at the next step
+      // the ghosts' positions and velocities from their owners
+      body_->exchange_ghosts(*domain_);
+    }
+    else
     {
       const auto &fp = body_->pressure_forces();
       double w       = 0;
@@ -475,6 +621,43 @@ namespace coupling
     return std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / scale;
   }
 
+  double SpecimenDriver::reduce_contact_forces()
+  {
+    // one buffer: both platens' nodal forces, the particles' force sum and magnitude sum, the
+    // normal forces; summed over the ranks by one MPI_Allreduce, so every rank steps the same
+    // platens
+    const std::size_t nt = force_on_top_.size(), nb = force_on_bottom_.size();
+    std::vector<double> buffer(nt + nb + 7, 0.0);
+    std::copy(force_on_top_.begin(), force_on_top_.end(), buffer.begin());
+    std::copy(force_on_bottom_.begin(), force_on_bottom_.end(), buffer.begin() + nt);
+    double *tail = buffer.data() + nt + nb;
+    for (std::size_t i = 0; i < force_on_particles_.size(); i += 3)
+    {
+      const double *f = &force_on_particles_[i];
+      tail[3] += std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+      for (int d = 0; d < 3; ++d)
+        tail[d] += f[d];
+    }
+    tail[4] = contact_top_->normal_force();
+    tail[5] = contact_bottom_->normal_force();
+    tail[6] = pressure_work_pending_;
+    MPI_Allreduce(MPI_IN_PLACE, buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM,
+                  domain_->comm());
+    std::copy(buffer.begin(), buffer.begin() + nt, force_on_top_.begin());
+    std::copy(buffer.begin() + nt, buffer.begin() + nt + nb, force_on_bottom_.begin());
+    normal_top_    = tail[4];
+    normal_bottom_ = tail[5];
+    pressure_work_ += tail[6];
+    pressure_work_pending_ = 0;
+    double total[3] = {tail[0], tail[1], tail[2]};
+    for (const auto *platen : {&force_on_top_, &force_on_bottom_})
+      for (std::size_t i = 0; i < platen->size(); ++i)
+        total[i % 3] += (*platen)[i];
+    if (!(tail[3] > 0))
+      return 0.0;
+    return std::sqrt(total[0] * total[0] + total[1] * total[1] + total[2] * total[2]) / tail[3];
+  }
+
   HistoryRow SpecimenDriver::history_row() const
   {
     HistoryRow r;
@@ -501,35 +684,56 @@ namespace coupling
     }
     const auto &x  = body_->positions();
     const auto &x0 = body_->reference_positions();
+    double z_lo = 0, z_hi = 0, er = 0;
     if (!bts_)
     {
-      double z_lo = 0, z_hi = 0;
       for (unsigned int i : gauge_low_)
         z_lo += x[i][2];
       for (unsigned int i : gauge_high_)
         z_hi += x[i][2];
-      z_lo /= gauge_low_.size();
-      z_hi /= gauge_high_.size();
-      r.axial_gauge_strain = 1.0 - (z_hi - z_lo) / gauge_length0_;
-      double er            = 0;
       for (unsigned int i : gauge_ring_)
         er += std::hypot(x[i][0], x[i][1]) / std::hypot(x0[i][0], x0[i][1]) - 1.0;
-      r.radial_strain = er / gauge_ring_.size();
     }
-    const sph::Energies e = body_->energies();
-    const double pen      = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
+    sph::Energies e = body_->energies();
+    double pen      = contact_top_->penalty_energy() + contact_bottom_->penalty_energy();
+    double friction_top    = contact_top_->friction_dissipation();
+    double friction_bottom = contact_bottom_->friction_dissipation();
+    if (domain_) // the owned particles' shares of every rank (one collective)
+    {
+      double n_failed = 0;
+      for (const std::int32_t i : domain_->owned_indices())
+        n_failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
+      const std::vector<double> all =
+        domain_->sum({z_lo, z_hi, er, e.kinetic, e.internal, e.plastic, e.viscous, e.hourglass,
+                      e.external, pen, friction_top, friction_bottom, n_failed,
+                      pressure_work_pending_});
+      z_lo = all[0], z_hi = all[1], er = all[2];
+      e.kinetic = all[3], e.internal = all[4], e.plastic = all[5], e.viscous = all[6];
+      e.hourglass = all[7], e.external = all[8];
+      pen = all[9], friction_top = all[10], friction_bottom = all[11];
+      r.n_failed = all[12];
+      r.external_work = frame_work_ + (pressure_work_ + all[13]);
+    }
+    else
+      r.n_failed = n_failed_particles(*body_);
+    if (!bts_)
+    {
+      z_lo /= gauge_counts_[0];
+      z_hi /= gauge_counts_[1];
+      r.axial_gauge_strain = 1.0 - (z_hi - z_lo) / gauge_length0_;
+      r.radial_strain = er / gauge_counts_[2];
+    }
     r.kinetic_energy      = e.kinetic + top_->kinetic_energy() + bottom_->kinetic_energy();
     r.internal_energy     = e.internal + top_->strain_energy() + bottom_->strain_energy() + pen;
-    r.dissipated_energy   = e.dissipated() + contact_top_->friction_dissipation() +
-                          contact_bottom_->friction_dissipation() + top_->damping_dissipation() +
-                          bottom_->damping_dissipation();
+    r.dissipated_energy   = e.dissipated() + friction_top + friction_bottom +
+                          top_->damping_dissipation() + bottom_->damping_dissipation();
     if (frame_) // the frame's spring and dashpot
     {
       r.internal_energy += frame_->spring_energy();
       r.dissipated_energy += frame_->dissipated_energy();
     }
-    r.external_work = frame_work_ + pressure_work_;
-    r.n_failed = n_failed_particles(*body_);
+    if (!domain_)
+      r.external_work = frame_work_ + pressure_work_;
     return r;
   }
 
@@ -539,14 +743,14 @@ namespace coupling
     m.row = history_row();
     // the rock's own energies, and of its kinetic energy only the part that is not a homogeneous
     // deformation (see the quasi-static check in run())
-    m.rock_kinetic  = non_affine_kinetic_energy(*body_);
-    m.rock_internal = body_->energies().internal;
+    m.rock_kinetic  = non_affine_kinetic_energy(*body_, domain_.get());
+    m.rock_internal = domain_ ? domain_->sum(body_->energies().internal) : body_->energies().internal;
     return m;
   }
 
   std::string SpecimenDriver::stop_reason(const HistoryRow &r)
   {
-    failure_->observe(*body_, r.stress);
+    failure_->observe(*body_, r.stress, domain_.get());
     const bool loading = time_ > plan_.confinement_time;
     // the load the specimen carries: mean of both load cells (the stress wave that crosses
     // the specimen at the start makes each one oscillate on its own)
@@ -556,7 +760,9 @@ namespace coupling
     // its expected failure strain, so that the start-up transient cannot end the run
     // strain counts from the first contact on both sides: curved jaws start with a gap
     // (the arc over the lattice's discrete top), which the platen closes first
-    if (!touching_ && contact_top_->normal_force() > 0 && contact_bottom_->normal_force() > 0)
+    const double normal_top    = domain_ ? normal_top_ : contact_top_->normal_force();
+    const double normal_bottom = domain_ ? normal_bottom_ : contact_bottom_->normal_force();
+    if (!touching_ && normal_top > 0 && normal_bottom > 0)
     {
       touching_     = true;
       touch_strain_ = r.strain;
@@ -577,22 +783,67 @@ namespace coupling
     constexpr std::size_t n_scalars = 11;
   } // namespace
 
+  namespace
+  {
+    /// The body's accounts that each rank of a distributed run sums over its own particles.
+    bool rank_share(const std::string &name)
+    {
+      return name == "body.viscous" || name == "body.hourglass" || name == "body.external";
+    }
+
+    bool starts_with(const std::string &text, const std::string &prefix)
+    {
+      return text.compare(0, prefix.size(), prefix) == 0;
+    }
+
+    bool ends_with(const std::string &text, const std::string &suffix)
+    {
+      return text.size() >= suffix.size() &&
+             text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+  } // namespace
+
   void SpecimenDriver::save_state(StateArrays &out) const
   {
-    body_->save_state(out, "body.");
+    if (domain_)
+    {
+      // the whole body in global order, the accounts summed: a checkpoint of any number of
+      // ranks, which a run on any other number continues
+      StateArrays local;
+      body_->save_state(local, "body.");
+      contact_top_->save_state(local, "contact_top.");
+      contact_bottom_->save_state(local, "contact_bottom.");
+      const std::size_t n_local = body_->n_particles();
+      for (const auto &[name, a] : local) // (the same names in the same order on every rank)
+      {
+        if (rank_share(name) || ends_with(name, ".scalars"))
+          out[name] = domain_->sum(a);
+        else if (starts_with(name, "body."))
+          out[name] = a.size() >= n_local && a.size() % n_local == 0 ?
+                        domain_->gather(a.data(), static_cast<int>(a.size() / n_local)) :
+                        a; // pressure, dt_last: the same on every rank
+        else // the contacts' arrays of the owned particles
+          out[name] = domain_->gather_owned(a.data(), ends_with(name, "tangential_force") ? 3 : 1);
+      }
+    }
+    else
+    {
+      body_->save_state(out, "body.");
+      contact_top_->save_state(out, "contact_top.");
+      contact_bottom_->save_state(out, "contact_bottom.");
+    }
     top_->save_state(out, "platen_top.");
     bottom_->save_state(out, "platen_bottom.");
-    contact_top_->save_state(out, "contact_top.");
-    contact_bottom_->save_state(out, "contact_bottom.");
     out["driver.scalars"] = {time_,
                              static_cast<double>(n_steps_),
                              frame_work_,
-                             pressure_work_,
+                             domain_ ? pressure_work_ + domain_->sum(pressure_work_pending_) :
+                                       pressure_work_,
                              peak_force_,
                              armed_ ? 1.0 : 0.0,
                              dt_,
                              static_cast<double>(n_substeps_),
-                             static_cast<double>(body_->n_particles()),
+                             static_cast<double>(domain_ ? domain_->n_global() : body_->n_particles()),
                              touching_ ? 1.0 : 0.0,
                              touch_strain_};
     out["driver.failure"] = failure_->state();
@@ -608,21 +859,61 @@ namespace coupling
                        "a UCS, BTS or CTCS run of this cosim");
     const auto &d = s->second;
     // the same case gives the same particle count, time step and sub-cycling, bit for bit
-    if (d[8] != body_->n_particles() || d[6] != dt_ || d[7] != n_substeps_)
+    const std::size_t n_all = domain_ ? domain_->n_global() : body_->n_particles();
+    if (d[8] != n_all || d[6] != dt_ || d[7] != n_substeps_)
     {
       std::ostringstream os;
       os << "checkpoint: it holds " << d[8] << " particles at dt = " << d[6]
-         << " s, this case has " << body_->n_particles() << " at dt = " << dt_
+         << " s, this case has " << n_all << " at dt = " << dt_
          << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
     }
     try
     {
-      body_->load_state(in, "body.");
+      if (domain_)
+      {
+        // this rank's rows of the global arrays; the accounts on rank 0 (they are summed)
+        StateArrays local;
+        const double share = domain_->rank() == 0 ? 1.0 : 0.0;
+        for (const auto &[name, a] : in)
+        {
+          if (rank_share(name) || ((starts_with(name, "contact_top.") ||
+                                     starts_with(name, "contact_bottom.")) &&
+                                    ends_with(name, ".scalars")))
+          {
+            std::vector<double> b(a);
+            for (double &value : b)
+              value *= share;
+            local[name] = std::move(b);
+          }
+          else if (starts_with(name, "body."))
+            local[name] = a.size() >= n_all && a.size() % n_all == 0 ?
+                            domain_->scatter(a, static_cast<int>(a.size() / n_all)) :
+                            a;
+          else if (starts_with(name, "contact_top.") || starts_with(name, "contact_bottom."))
+          {
+            const std::size_t w = a.size() / n_all;
+            std::vector<double> b;
+            for (const std::int32_t i : domain_->owned_indices())
+            {
+              const std::size_t g = static_cast<std::size_t>(domain_->global_ids()[i]);
+              b.insert(b.end(), a.begin() + w * g, a.begin() + w * (g + 1));
+            }
+            local[name] = std::move(b);
+          }
+        }
+        body_->load_state(local, "body.");
+        contact_top_->load_state(local, "contact_top.");
+        contact_bottom_->load_state(local, "contact_bottom.");
+      }
+      else
+      {
+        body_->load_state(in, "body.");
+        contact_top_->load_state(in, "contact_top.");
+        contact_bottom_->load_state(in, "contact_bottom.");
+      }
       top_->load_state(in, "platen_top.");
       bottom_->load_state(in, "platen_bottom.");
-      contact_top_->load_state(in, "contact_top.");
-      contact_bottom_->load_state(in, "contact_bottom.");
     }
     catch (const std::invalid_argument &e)
     {
@@ -632,6 +923,7 @@ namespace coupling
     n_steps_       = static_cast<std::size_t>(d[1]);
     frame_work_    = d[2];
     pressure_work_ = d[3];
+    pressure_work_pending_ = 0;
     peak_force_    = d[4];
     armed_         = d[5] != 0.0;
     touching_      = d[9] != 0.0;
@@ -651,7 +943,7 @@ namespace coupling
 
   ParticleSnapshot SpecimenDriver::particle_snapshot() const
   {
-    return coupling::particle_snapshot(*body_);
+    return coupling::particle_snapshot(*body_, domain_.get());
   }
 
   std::vector<MeshSnapshot> SpecimenDriver::mesh_snapshots() const
@@ -677,6 +969,7 @@ namespace coupling
     schedule.end_reason        = "end strain";
     StabilityWatch watch;
     watch.rock         = body_.get();
+    watch.domain       = domain_.get();
     watch.steel        = {{"top platen", top_.get()}, {"bottom platen", bottom_.get()}};
     watch.domain_size  = domain_size_;
     watch.energy_floor = energy_floor_;
@@ -694,7 +987,16 @@ namespace coupling
     // ---- what the laboratory reads off the curves
     Summary s;
     s.test         = prm_.test;
-    s.n_particles  = body_->n_particles();
+    s.n_particles  = domain_ ? domain_->n_global() : body_->n_particles();
+    if (domain_)
+    {
+      const std::vector<double> counts =
+        domain_->all_gather({static_cast<double>(domain_->owned_indices().size())});
+      for (const double c : counts)
+        s.particles_per_rank.push_back(static_cast<std::size_t>(c));
+    }
+    else
+      s.particles_per_rank = {s.n_particles};
     s.n_steps      = n_steps_;
     s.true_area    = true_area_;
     s.lattice_area = lattice_area_;
@@ -774,7 +1076,7 @@ namespace coupling
     s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
     // the SPH pairs (fixed in total Lagrangian; at the end in updated Lagrangian): with n_steps
     // and wall_seconds the pair interactions per second (tools/bench)
-    s.extra.push_back({"n_sph_pairs", static_cast<double>(body_->n_pairs())});
+    s.extra.push_back({"n_sph_pairs", static_cast<double>(domain_ ? n_global_pairs_ : body_->n_pairs())});
     if (frame_)
       s.extra.push_back({"frame_stiffness_N_per_m", frame_->stiffness()});
     if (prm_.rock_case.rate_sensitivity != 0)
@@ -792,7 +1094,18 @@ namespace coupling
       s.energy_balance_error =
         r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
     }
-    failure_->report(*body_, s);
+    failure_->report(*body_, s, domain_.get());
+    if (domain_)
+    {
+      // what the split costs: ghosts held per particle of the body, and the bytes each step sends
+      // (the halo: positions and velocities of every ghost; the summed contact forces)
+      const std::vector<double> g =
+        domain_->sum({static_cast<double>(domain_->n_ghosts()), static_cast<double>(domain_->n_sent(6))});
+      s.extra.push_back({"ghost_fraction", g[0] / static_cast<double>(domain_->n_global())});
+      s.extra.push_back({"halo_bytes_per_step", 8.0 * g[1]});
+      s.extra.push_back({"allreduce_bytes_per_rank_per_step",
+                         8.0 * static_cast<double>(force_on_top_.size() + force_on_bottom_.size() + 7)});
+    }
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
     s.wall_seconds =

@@ -19,6 +19,7 @@ namespace sph
 {
   template <int dim>
   class Body;
+  class Domain;
 }
 namespace fem
 {
@@ -66,6 +67,7 @@ namespace coupling
     void step() override;
     double time() const override { return time_; }
     std::size_t n_steps() const override { return n_steps_; }
+    /// (distributed: up to the last step's boundary-load work, which the next step sums)
     double external_work() const override { return frame_work_ + pressure_work_; }
     /// The history row and the rock's non-affine kinetic and elastic energies.
     Measurement measure() override;
@@ -85,12 +87,27 @@ namespace coupling
     void select_gauges();
     double top_velocity(double t) const;
     double exchange_imbalance() const;
+    /// Distributed runs: sums the platen forces, the particles' contact-force totals and the
+    /// contact normal forces over the ranks (one MPI_Allreduce); the imbalance of the step.
+    double reduce_contact_forces();
     HistoryRow history_row() const;
 
     CaseParameters prm_;
     LoadingPlan plan_;
     bool bts_ = false, ctcs_ = false;
     std::unique_ptr<sph::Body<3>> body_;
+    // distributed runs (more than one MPI rank): this rank's part of the body (null on one
+    // rank). body_ then holds the local particles (owned and ghosts, ascending global index),
+    // the contacts the owned ones packed (owned_x_, owned_v_, owned_m_), and every sum over the
+    // particles is taken over the owned ones and summed over the ranks
+    std::unique_ptr<sph::Domain> domain_;
+    std::vector<double> owned_x_, owned_v_, owned_m_, owned_f_; // owned_f_: kinematic contact
+    std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
+    double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]
+    std::size_t n_global_pairs_ = 0;            // SPH pairs of the whole body
+    // distributed: this rank's share of the last step's boundary-load work, summed over the
+    // ranks with the next step's contact forces (pressure_work_ holds the sum before it) [J]
+    double pressure_work_pending_ = 0;
     std::unique_ptr<FailureWatch> failure_; // where the damage starts, the final pattern
     std::unique_ptr<fem::SteelBody> top_, bottom_;
     /// The load-frame spring that drives the (rigid) top platen; null for a rigid frame
@@ -109,7 +126,9 @@ namespace coupling
     double max_exchange_imbalance_ = 0; ///< see Summary::max_exchange_imbalance
     double domain_size_ = 0;
     // gauges: particle sets for axial (two layers) and radial (outer ring at mid-height) strain
+    // (local indices; distributed: of the owned members; gauge_counts_: members of all ranks)
     std::vector<unsigned int> gauge_low_, gauge_high_, gauge_ring_;
+    double gauge_counts_[3] = {0, 0, 0};
     double gauge_length0_ = 0;
     std::vector<double> force_before_contact_; ///< kinematic contact: f_int + f_pressure + f_ext [N]
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;

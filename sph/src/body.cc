@@ -1,4 +1,5 @@
 #include <sph/body.h>
+#include <sph/domain.h>
 #include <sph/kernels.h>
 
 #include "chunk_queue.h"
@@ -287,38 +288,20 @@ namespace sph
       ++pair_begin_[pairs_.first[p] + 1];
     for (std::size_t i = 0; i < n; ++i)
       pair_begin_[i + 1] += pair_begin_[i];
-    // chunks of equal work: a pair is one unit, a particle per_particle units (its stress
-    // update plus its loop and tail-group overhead; surface chunks hold more particles per
-    // pair). 8 was measured, not derived: `valgrind --tool=callgrind --separate-threads=yes
-    // sph_bench 0.0025 10 2` put two static ranges' force passes within 1 % and their stress
-    // passes 6 % apart with the per-particle Eigen stress update, and with the batched one
-    // (stress_batch.h) 8 was still the best of 2, 4, 8 and 12.
-    // The number of chunks depends on the particle count only (the results then do not depend
-    // on the thread count): enough for a thread that runs slower to hand work over (a chunk is
-    // at most 1/max_chunks of a pass), few enough that the cross pairs stay few (each cut
-    // adds the pairs across it: see chunk_begin_ in body.h).
-    constexpr double      per_particle    = 8.0;
-    constexpr std::size_t chunk_particles = 128, max_chunks = 16;
-    const std::size_t     K =
-      prm_.chunks > 0 ? std::min<std::size_t>(prm_.chunks, std::max<std::size_t>(n, 1)) :
-                        std::clamp<std::size_t>(n / chunk_particles, 1, max_chunks);
-    const double          total = static_cast<double>(n_p) + per_particle * n;
-    chunk_begin_.assign(K + 1, static_cast<std::int32_t>(n));
-    chunk_begin_[0] = 0;
-    for (std::size_t c = 1; c < K; ++c)
+    if (chunk_of_.empty())
       {
-        const double target = total * c / K;
-        std::size_t  lo = 0, hi = n; // first i whose work before it reaches the target
-        while (lo < hi)
-          {
-            const std::size_t mid = (lo + hi) / 2;
-            if (pair_begin_[mid] + per_particle * mid < target)
-              lo = mid + 1;
-            else
-              hi = mid;
-          }
-        chunk_begin_[c] = static_cast<std::int32_t>(lo);
+        const std::vector<std::int64_t> begin(pair_begin_.begin(), pair_begin_.end());
+        chunk_begin_ = work_chunks(begin, prm_.chunks);
       }
+    else // the whole body's chunks (set_chunks): a new one wherever the number changes
+      {
+        chunk_begin_.assign(1, 0);
+        for (std::size_t i = 1; i < n; ++i)
+          if (chunk_of_[i] != chunk_of_[i - 1])
+            chunk_begin_.push_back(static_cast<std::int32_t>(i));
+        chunk_begin_.push_back(static_cast<std::int32_t>(n));
+      }
+    const std::size_t K = chunk_begin_.size() - 1;
     // the cross pairs (ascending pair order, so chunk by chunk) and, per chunk, those whose
     // second particle it holds (ascending k: ascending first particle)
     std::vector<std::int32_t> chunk_of(n);
@@ -363,6 +346,65 @@ namespace sph
           }
       }
     force_share_.resize(dim * n_cross);
+  }
+
+  template <int dim>
+  std::vector<std::int32_t> Body<dim>::work_chunks(const std::vector<std::int64_t> &pair_begin,
+                                                   const int chunks)
+  {
+    const std::size_t n = pair_begin.size() - 1;
+    const double      n_p = static_cast<double>(pair_begin[n]);
+    // chunks of equal work: a pair is one unit, a particle per_particle units (its stress
+    // update plus its loop and tail-group overhead; surface chunks hold more particles per
+    // pair). 8 was measured, not derived: `valgrind --tool=callgrind --separate-threads=yes
+    // sph_bench 0.0025 10 2` put two static ranges' force passes within 1 % and their stress
+    // passes 6 % apart with the per-particle Eigen stress update, and with the batched one
+    // (stress_batch.h) 8 was still the best of 2, 4, 8 and 12.
+    // The number of chunks depends on the particle count only (the results then do not depend
+    // on the thread count): enough for a thread that runs slower to hand work over (a chunk is
+    // at most 1/max_chunks of a pass), few enough that the cross pairs stay few (each cut
+    // adds the pairs across it: see chunk_begin_ in body.h).
+    constexpr double      per_particle    = 8.0;
+    constexpr std::size_t chunk_particles = 128, max_chunks = 16;
+    const std::size_t     K =
+      chunks > 0 ? std::min<std::size_t>(static_cast<std::size_t>(chunks), std::max<std::size_t>(n, 1)) :
+                        std::clamp<std::size_t>(n / chunk_particles, 1, max_chunks);
+    const double          total = n_p + per_particle * n;
+    std::vector<std::int32_t> chunk_begin;
+    chunk_begin.assign(K + 1, static_cast<std::int32_t>(n));
+    chunk_begin[0] = 0;
+    for (std::size_t c = 1; c < K; ++c)
+      {
+        const double target = total * c / K;
+        std::size_t  lo = 0, hi = n; // first i whose work before it reaches the target
+        while (lo < hi)
+          {
+            const std::size_t mid = (lo + hi) / 2;
+            if (pair_begin[mid] + per_particle * mid < target)
+              lo = mid + 1;
+            else
+              hi = mid;
+          }
+        chunk_begin[c] = static_cast<std::int32_t>(lo);
+      }
+    return chunk_begin;
+  }
+
+  template <int dim>
+  void Body<dim>::set_chunks(const std::vector<std::int32_t> &chunk_of)
+  {
+    require(chunk_of.size() == p_.size(), "set_chunks: one chunk number per particle");
+    for (std::size_t i = 1; i < chunk_of.size(); ++i)
+      require(chunk_of[i] >= chunk_of[i - 1], "set_chunks: chunk numbers must not decrease");
+    chunk_of_ = chunk_of;
+    partition_pairs();
+  }
+
+  template <int dim>
+  void Body<dim>::set_owned(const std::vector<std::uint8_t> &owned)
+  {
+    require(owned.empty() || owned.size() == p_.size(), "set_owned: one flag per particle");
+    owned_ = owned;
   }
 
   template <int dim>
@@ -839,6 +881,8 @@ namespace sph
     margs.av        = av;
     const long n_chunks = static_cast<long>(chunk_begin_.size()) - 1;
     const long n        = static_cast<long>(p_.size());
+    // distributed (set_owned): the dissipation of the pairs whose first particle is owned
+    const std::uint8_t *owned = owned_.empty() ? nullptr : owned_.data();
     ChunkQueue queue, gather_queue;
     queue.reset(static_cast<int>(n_chunks), n_threads_);
     gather_queue.reset(static_cast<int>(n_chunks), n_threads_);
@@ -879,8 +923,11 @@ namespace sph
                                                          sum);
                   for (int d = 0; d < dim; ++d)
                     fi[d] += sum[d];
-                  sum_power += sum[dim];
-                  sum_hg_power += sum[dim + 1];
+                  if (owned == nullptr || owned[i])
+                    {
+                      sum_power += sum[dim];
+                      sum_hg_power += sum[dim + 1];
+                    }
                 }
               else
                 {
@@ -901,8 +948,11 @@ namespace sph
                       else // subtracted by j's chunk after all chunks (incoming_)
                         for (int d = 0; d < dim; ++d)
                           *share++ = f[d];
-                      sum_power += power;
-                      sum_hg_power += hg_power;
+                      if (owned == nullptr || owned[i])
+                        {
+                          sum_power += power;
+                          sum_hg_power += hg_power;
+                        }
                     }
                 }
               f_int[i] = fi;
@@ -1015,6 +1065,7 @@ namespace sph
   void Body<dim>::integrate(const double dt)
   {
     const std::size_t n = p_.size();
+    const std::uint8_t *owned = owned_.empty() ? nullptr : owned_.data();
     external_ += deterministic_sum(n, n_threads_, [&](const std::size_t i) {
       const Vector<dim> f = p_.f_int[i] + p_.f_pressure[i] + p_.f_ext[i];
       Vector<dim>       v = p_.v[i] + (dt / p_.mass[i]) * f;
@@ -1031,7 +1082,7 @@ namespace sph
       p_.x[i] += dt * v;
       const double work = (p_.f_ext[i] + p_.f_pressure[i] + r).dot(v) * dt;
       p_.f_ext[i].setZero();
-      return work;
+      return (owned == nullptr || owned[i]) ? work : 0.0;
     });
     viscous_ -= dt * viscous_power_;
     hourglass_ -= dt * hourglass_power_;
@@ -1039,18 +1090,29 @@ namespace sph
   }
 
   template <int dim>
+  void Body<dim>::exchange_ghosts(const Domain &domain)
+  {
+    static_assert(sizeof(Vector<dim>) == dim * sizeof(double));
+    domain.exchange({{p_.x.front().data(), dim}, {p_.v.front().data(), dim}});
+  }
+
+  template <int dim>
   Energies Body<dim>::energies() const
   {
     Energies e;
-    const std::size_t n = p_.size();
+    const std::size_t   n     = p_.size();
+    const std::uint8_t *owned = owned_.empty() ? nullptr : owned_.data();
     e.kinetic = deterministic_sum(n, n_threads_, [&](const std::size_t i) {
-      return 0.5 * p_.mass[i] * p_.v[i].squaredNorm();
+      return (owned == nullptr || owned[i]) ? 0.5 * p_.mass[i] * p_.v[i].squaredNorm() : 0.0;
     });
     e.internal = deterministic_sum(n, n_threads_, [&](const std::size_t i) {
-      return p_.volume[i] * rock::elastic_energy_density(p_.stress[i], rock_);
+      return (owned == nullptr || owned[i]) ?
+               p_.volume[i] * rock::elastic_energy_density(p_.stress[i], rock_) :
+               0.0;
     });
-    const double work =
-      deterministic_sum(n, n_threads_, [&](const std::size_t i) { return stress_work_[i]; });
+    const double work = deterministic_sum(n, n_threads_, [&](const std::size_t i) {
+      return (owned == nullptr || owned[i]) ? stress_work_[i] : 0.0;
+    });
     e.plastic   = work - e.internal;
     e.viscous   = viscous_;
     e.hourglass = hourglass_;

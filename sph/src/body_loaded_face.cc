@@ -15,6 +15,12 @@ namespace sph
   template <int dim>
   unsigned int Body<dim>::add_loaded_face(const Vector<dim> &normal)
   {
+    return add_loaded_face(normal, std::numeric_limits<double>::quiet_NaN());
+  }
+
+  template <int dim>
+  unsigned int Body<dim>::add_loaded_face(const Vector<dim> &normal, const double face_height)
+  {
     const double length = normal.norm();
     if (!(length > 0) || !std::isfinite(length))
       throw std::invalid_argument("sph::Body::add_loaded_face: the normal must be a non-zero "
@@ -26,6 +32,8 @@ namespace sph
         h_max = std::max(h_max, p_.h[i]);
         top   = std::max(top, n.dot(p_.x0[i]));
       }
+    if (!std::isnan(face_height))
+      top = face_height;
     // the boundary term reaches two kernel supports deep: particles within 2h of the surface
     // have truncated supports (L != I), and their L enters the sums of their neighbours
     const double depth = 4.0 * h_max + 0.01 * prm_.spacing;
@@ -145,6 +153,8 @@ namespace sph
 
   template unsigned int Body<2>::add_loaded_face(const Vector<2> &);
   template unsigned int Body<3>::add_loaded_face(const Vector<3> &);
+  template unsigned int Body<2>::add_loaded_face(const Vector<2> &, double);
+  template unsigned int Body<3>::add_loaded_face(const Vector<3> &, double);
   template void         Body<2>::loaded_face_forces();
   template void Body<2>::lump_loaded_faces(std::vector<Vector<2>> &) const;
   template void Body<3>::lump_loaded_faces(std::vector<Vector<3>> &) const;

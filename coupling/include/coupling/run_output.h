@@ -81,6 +81,8 @@ namespace coupling
     double strain_rate = 0;           ///< nominal strain rate used [1/s]
     double time_step = 0;             ///< SPH time step [s]
     std::string stop_reason;          ///< "post-peak drop", "end strain", ...
+    /// Particles owned by each MPI rank (one entry on one rank); its size is the rank count.
+    std::vector<std::size_t> particles_per_rank;
     /// Further results of a test type, written to summary.json as they are named (units in the
     /// name), e.g. {"mean_normal_force_kN", 12.3}; a NaN is written as null.
     std::vector<std::pair<std::string, double>> extra;

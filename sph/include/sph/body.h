@@ -28,6 +28,8 @@
 
 namespace sph
 {
+  class Domain;
+
   /// Energy account of a body [J] (2-D: per unit thickness).
   struct Energies
   {
@@ -147,6 +149,9 @@ namespace sph
     /// number of particles in the face's columns. Throws std::invalid_argument for |n| = 0 (or
     /// not finite) and when the face's columns overlap those of an earlier loaded face.
     unsigned int add_loaded_face(const Vector<dim> &n);
+    /// The same with the face's height n.X [m] given (the largest over the whole body): a part
+    /// of a distributed body (Domain) does not hold every particle of the face.
+    unsigned int add_loaded_face(const Vector<dim> &n, double face_height);
     /// The discrete area [m^(dim-1)] a uniform normal stress on a loaded face acts on through
     /// particle i: -n . sum_k s_k over i's column for the outer particle of a loaded-face column
     /// (reference configuration), 0 for every other particle. A platen that loads the outer
@@ -160,6 +165,34 @@ namespace sph
     void compute_forces();
     /// Advances velocities and positions by dt [s] (see the file comment).
     void integrate(double dt);
+
+    /// Distributed bodies (sph::Domain): `owned[i]` is 1 for a particle this part owns, 0 for a
+    /// ghost. Energies, external work and dissipation then count the owned particles (and the
+    /// pairs whose first particle is owned) only: the sums over the parts give the whole body's.
+    /// Empty (the default): every particle counts.
+    void set_owned(const std::vector<std::uint8_t> &owned);
+    /// Distributed bodies: the chunk (see the pair loops) of each particle, non-decreasing, as
+    /// the whole body numbers them (work_chunks), so that every sum is added in the order of the
+    /// serial body. Throws std::invalid_argument for a wrong size or a decreasing entry.
+    void set_chunks(const std::vector<std::int32_t> &chunk_of);
+    /// Distributed bodies: the centre of the whole body's reference bounding box [m] (the
+    /// mixed-precision pair force reads reference positions relative to it, rounded to float:
+    /// the same centre gives every part the serial body's bits). Default: this body's own.
+    void set_reference_centre(const Vector<dim> &centre) { centre0_ = centre; }
+    /// Number of pairs of particle i as first particle (pairs with a higher-numbered one).
+    std::int32_t n_pairs_as_first(unsigned int i) const
+    {
+      return pair_begin_[i + 1] - pair_begin_[i];
+    }
+    /// The first particle of each chunk of equal work, and n at the end, for particles whose
+    /// pairs as first particle start at `pair_begin` (n + 1 offsets), `chunks` as
+    /// Parameters::chunks: what the body uses for its own particles.
+    static std::vector<std::int32_t> work_chunks(const std::vector<std::int64_t> &pair_begin,
+                                                 int chunks);
+
+    /// Distributed bodies: the positions and velocities of the ghosts from their owners (after
+    /// `integrate`, which moves the ghosts with incomplete forces). Collective over the domain.
+    void exchange_ghosts(const Domain &domain);
 
     /// Energy account (see Energies).
     Energies energies() const;
@@ -232,6 +265,8 @@ namespace sph
     // count: the results are the same bits with any number of threads, whichever thread takes
     // which chunk.
     std::vector<std::int32_t> pair_begin_;     // per particle: its first pair as first
+    std::vector<std::int32_t> chunk_of_;       // per particle: its chunk (set_chunks; else empty)
+    std::vector<std::uint8_t> owned_;          // per particle: counted in sums (set_owned)
     std::vector<std::int32_t> chunk_begin_;    // per chunk: its first particle (and n at the end)
     std::vector<std::int32_t> cross_begin_;    // per chunk: its first cross pair (as first)
     // per chunk, the cross pairs whose j it holds in ascending pair order: their index k in

@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Strong scaling of a distributed cosim run: the UCS case at --dx (default 2 mm) to a short end
+strain (--end-strain, default 0.0005: a few hundred steps), one thread per rank
+(OMP_NUM_THREADS=1, SPH/Threads=1), on 1 rank without mpirun and on 2 (or --ranks) under mpirun.
+Each rank runs under /usr/bin/time -v. Prints and writes OUT/mpi_scaling.csv: ranks, particles,
+steps, run wall seconds (summary.json: the run loop, without setup), particle-steps per second,
+parallel efficiency against 1 rank, peak RSS per rank [MiB], CPU seconds per rank (user +
+system of the whole process: Open MPI polls while it waits, so waiting counts too), ghost fraction (ghosts held per
+particle of the body), halo bytes per step (all ranks) and the largest difference of a
+history.csv column from the 1-rank run's, relative to the column's largest value (0-based column
+index; 8 is the dissipated energy). On a shared machine the wall-clock rates
+depend on the load: the load average is printed with every result.
+
+Usage: tools/mpi_bench.py [--dx DX] [--end-strain E] [--ranks 2,3] [--out DIR]
+"""
+import argparse
+import csv
+import json
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+root = pathlib.Path(__file__).resolve().parent.parent
+
+
+def peak_rss_mib(path):
+    text = pathlib.Path(path).read_text()
+    return int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", text).group(1)) / 1024.0
+
+
+def cpu_seconds(path):
+    text = pathlib.Path(path).read_text()
+    user = float(re.search(r"User time \(seconds\): ([0-9.]+)", text).group(1))
+    system = float(re.search(r"System time \(seconds\): ([0-9.]+)", text).group(1))
+    return user + system
+
+
+def history(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    return [[float(x) for x in r] for r in rows[1:]]
+
+
+def history_difference(a, b):
+    """The largest difference of a column of b from a, relative to the column's largest |value|,
+    and the column's index (inf for a different row count)."""
+    if len(a) != len(b):
+        return float("inf"), -1
+    worst = (0.0, -1)
+    for c in range(len(a[0])):
+        scale = max(abs(r[c]) for r in a) or 1.0
+        d = max(abs(x[c] - y[c]) for x, y in zip(a, b)) / scale
+        worst = max(worst, (d, c))
+    return worst
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--dx", type=float, default=0.002)
+    p.add_argument("--end-strain", type=float, default=0.0005)
+    p.add_argument("--ranks", default="2")
+    p.add_argument("--out", default=str(root / "docs" / "results" / "bench"))
+    p.add_argument("--cosim", default=os.environ.get("COSIM_BINARY", str(root / "build" / "bin" / "cosim")))
+    a = p.parse_args()
+    out = pathlib.Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    work = pathlib.Path(tempfile.mkdtemp(prefix="cosim-mpi-bench-"))
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    mpirun = ["mpirun", "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+    results = []
+    try:
+        for n in [1] + [int(r) for r in a.ranks.split(",")]:
+            folder = work / f"ranks{n}"
+            times = work / f"time{n}"
+            # each rank under /usr/bin/time -v, its report in its own file
+            inner = (f"exec /usr/bin/time -v -o {times}.$OMPI_COMM_WORLD_RANK {a.cosim} run "
+                     f"{root / 'cases/ucs/ucs.prm'} -o {folder} --quiet "
+                     f"--set 'SPH/Particle spacing={a.dx}' --set SPH/Threads=1 "
+                     f"--set 'Loading/End strain={a.end_strain}'")
+            if n == 1:
+                command = ["sh", "-c", inner.replace("$OMPI_COMM_WORLD_RANK", "0")]
+            else:
+                command = mpirun + ["-np", str(n), "sh", "-c", inner]
+            subprocess.run(command, check=True, env=env)
+            s = json.loads((folder / "summary.json").read_text())
+            rss = [peak_rss_mib(f"{times}.{r}") for r in range(n)]
+            cpu = [cpu_seconds(f"{times}.{r}") for r in range(n)]
+            rate = s["n_particles"] * s["n_steps"] / s["wall_seconds"]
+            results.append(dict(
+                ranks=n, particles=s["n_particles"], steps=s["n_steps"],
+                wall_s=round(s["wall_seconds"], 2), particle_steps_per_s=round(rate),
+                efficiency=None, peak_rss_mib_per_rank=" ".join(f"{x:.0f}" for x in rss),
+                cpu_s_per_rank=" ".join(f"{x:.1f}" for x in cpu),
+                ghost_fraction=round(s.get("ghost_fraction", 0.0), 3),
+                halo_bytes_per_step=int(s.get("halo_bytes_per_step", 0)),
+                history_difference="%.1e in column %d" % history_difference(
+                    history(work / "ranks1" / "history.csv"), history(folder / "history.csv")),
+                load=os.getloadavg()[0]))
+            base = results[0]["particle_steps_per_s"]
+            results[-1]["efficiency"] = round(rate / base / n, 3)
+            print(results[-1], flush=True)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    with open(out / "mpi_scaling.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(results[0].keys()))
+        w.writeheader()
+        w.writerows(results)
+    print(f"written: {out / 'mpi_scaling.csv'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
