@@ -257,7 +257,11 @@ namespace app
       "platen_modulus_GPa", "poissons_ratio", "max_displacement_mm", "max_kinetic_to_internal_energy",
       "max_force_imbalance", "energy_balance_error", "max_exchange_imbalance", "quasi_static",
       "true_area_mm2", "lattice_area_mm2", "strain_rate_per_s", "time_step_s", "stop_reason",
-      "last_good_state", "checkpoint", "restart"};
+      "last_good_state", "checkpoint", "restart", "n_ranks", "particles_per_rank"};
+    if (const auto it = j.find("particles_per_rank"); it != j.end() && it->is_array())
+      for (const auto &n : *it)
+        if (n.is_number())
+          s.particles_per_rank.push_back(n.get<std::size_t>());
     for (auto it = j.begin(); it != j.end(); ++it)
       if (!fixed.count(it.key()) && (it->is_number() || it->is_null()))
         s.extra.emplace_back(it.key(), it->is_null() ? std::numeric_limits<double>::quiet_NaN()
