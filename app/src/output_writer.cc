@@ -705,6 +705,16 @@ namespace app
 
   // ---------------------------------------------------------------- plot
 
+  void redirect_child_output(const char *log)
+  {
+    const int null = open("/dev/null", O_WRONLY);
+    const int err  = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (null >= 0)
+      dup2(null, STDOUT_FILENO);
+    if (err >= 0)
+      dup2(err, STDERR_FILENO);
+  }
+
   namespace
   {
     /// Runs argv, stdout to /dev/null, stderr into `log`. Returns the exit status (-1 if not run).
@@ -715,12 +725,7 @@ namespace app
         return -1;
       if (pid == 0)
       {
-        const int null = open("/dev/null", O_WRONLY);
-        const int err = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (null >= 0)
-          dup2(null, STDOUT_FILENO);
-        if (err >= 0)
-          dup2(err, STDERR_FILENO);
+        redirect_child_output(log.c_str());
         std::vector<char *> args;
         for (const auto &a : argv)
           args.push_back(const_cast<char *>(a.c_str()));

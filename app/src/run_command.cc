@@ -322,18 +322,20 @@ namespace app
     return run_into_folder(case_file, target, options.force, options.quiet, nullptr, options.restart);
   }
 
-  std::string shell_word(const std::string &text)
+  std::string shell_quote(const std::string &text)
   {
     bool plain = !text.empty();
     for (const char ch : text)
       plain = plain && (std::isalnum(static_cast<unsigned char>(ch)) || std::strchr("/._-+=:,@", ch));
     if (plain)
-      return clip(text);
+      return text;
     std::string out = "'";
     for (const char ch : text)
       out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return clip(out + "'");
+    return out + "'";
   }
+
+  std::string shell_word(const std::string &text) { return clip(shell_quote(text)); }
 
   namespace
   {

@@ -1,5 +1,6 @@
 #include "study_jobs.h"
 
+#include <app/output_writer.h>
 #include <app/run_command.h>
 
 #include <cerrno>
@@ -21,20 +22,7 @@ namespace app
   {
     std::string line;
     for (const auto &word : argv)
-    {
-      bool plain = !word.empty();
-      for (const char ch : word)
-        plain = plain && (std::isalnum(static_cast<unsigned char>(ch)) || std::strchr("/._-+=:,@", ch));
-      std::string quoted = word;
-      if (!plain)
-      {
-        quoted = "'";
-        for (const char ch : word)
-          quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-        quoted += "'";
-      }
-      line += (line.empty() ? "" : " ") + quoted;
-    }
+      line += (line.empty() ? "" : " ") + shell_quote(word);
     return line;
   }
 
@@ -71,12 +59,7 @@ namespace app
       prctl(PR_SET_PDEATHSIG, SIGTERM);
       if (getppid() != parent)
         _exit(127); // the study died before prctl took effect
-      const int null = open("/dev/null", O_WRONLY);
-      const int err  = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      if (null >= 0)
-        dup2(null, STDOUT_FILENO);
-      if (err >= 0)
-        dup2(err, STDERR_FILENO);
+      redirect_child_output(log.c_str());
       execve(args[0], args.data(), envp.data());
       _exit(127);
     }

@@ -48,6 +48,10 @@ namespace app
   /// Top-level keys one per line, nested values on the key's line.
   std::string summary_json(const coupling::Summary *summary, const RunEnd &end);
 
+  /// In a child process after fork(): stdout to /dev/null, stderr into the file `log`
+  /// (created or truncated). Only open() and dup2(): safe between fork() and exec().
+  void redirect_child_output(const char *log);
+
   /// summary.json text of a completed run.
   std::string summary_json(const coupling::Summary &summary);
 

@@ -46,7 +46,10 @@ namespace app
   /// of the available memory), naming the estimate and the finest spacing that fits.
   void check_case_resources(const CaseFile &case_file, const std::optional<double> &memory_limit);
 
-  /// `text` as one shell word (quoted when needed), clipped for a message.
+  /// `text` as one POSIX shell word, single-quoted when it holds anything but [A-Za-z0-9/._-+=:,@].
+  std::string shell_quote(const std::string &text);
+
+  /// shell_quote(text), clipped for a message.
   std::string shell_word(const std::string &text);
 
   /// Runs a read case and writes its result folder `target` (checked by check_output_folder)
