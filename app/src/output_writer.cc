@@ -4,6 +4,7 @@
 #include <coupling/errors.h>
 
 #include <hdf5.h>
+#include <mpi.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -349,19 +350,33 @@ namespace app
                  hid_t type, const std::string &units)
     {
       const hsize_t rows = n_columns ? data.size() / n_columns : 0;
-      hsize_t dims[2] = {rows, static_cast<hsize_t>(n_columns)};
-      const hid_t space = H5Screate_simple(n_columns > 1 ? 2 : 1, dims, nullptr);
-      const hid_t set = H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-      if (set < 0)
-      {
-        H5Sclose(space);
-        throw std::runtime_error("HDF5: cannot create dataset " + name + " in " + path);
-      }
+      const hid_t set = empty_dataset(parent, name, rows, n_columns, type, units, false);
       if (!data.empty())
         check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "writing " + name);
-      attribute(set, "units", units);
       H5Dclose(set);
+    }
+
+    /// A dataset of `rows` x `n_columns` (1-D for one column) with its units, not yet written;
+    /// `allocate`: its space reserved in the file now (contiguous, no fill), so that the ranks
+    /// of a distributed run can write their rows into it later (write_particle_rows).
+    hid_t empty_dataset(hid_t parent, const std::string &name, hsize_t rows, std::size_t n_columns,
+                        hid_t type, const std::string &units, bool allocate)
+    {
+      hsize_t dims[2] = {rows, static_cast<hsize_t>(n_columns)};
+      const hid_t space = H5Screate_simple(n_columns > 1 ? 2 : 1, dims, nullptr);
+      const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+      if (allocate)
+      {
+        H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+        H5Pset_fill_time(plist, H5D_FILL_TIME_NEVER);
+      }
+      const hid_t set = H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+      H5Pclose(plist);
       H5Sclose(space);
+      if (set < 0)
+        throw std::runtime_error("HDF5: cannot create dataset " + name + " in " + path);
+      attribute(set, "units", units);
+      return set;
     }
 
     void attribute(hid_t object, const std::string &name, double value)
@@ -477,6 +492,114 @@ namespace app
 
   std::size_t ResultsFile::n_snapshots() const { return impl_->snapshots.size(); }
 
+  namespace
+  {
+    /// One particle dataset of a snapshot: its name, columns per particle, units and the rows
+    /// held here (doubles, or integers for failure_mode).
+    struct ParticleField
+    {
+      const char *name;
+      std::size_t columns;
+      const char *units;
+      std::vector<double> values;
+      std::vector<int> integers;
+    };
+
+    /// The datasets of /snapshots/NNNNNN/particles for the rows `particles` holds, fields it
+    /// lacks as zeros (so that the XDMF stays valid). std::logic_error on a field of the wrong
+    /// size.
+    std::vector<ParticleField> particle_fields(const ParticleSnapshot &particles)
+    {
+      const std::size_t n = particles.n_rows();
+      auto filled = [&](const std::vector<double> &v, std::size_t per, const char *what) {
+        if (v.size() != n * per && !v.empty())
+          throw std::logic_error(std::string("ParticleSnapshot::") + what + " has the wrong size");
+        return v.empty() ? std::vector<double>(n * per, 0.0) : v;
+      };
+      if (!particles.failure_mode.empty() && particles.failure_mode.size() != n)
+        throw std::logic_error("ParticleSnapshot::failure_mode has the wrong size");
+      const std::vector<double> stress = filled(particles.stress, 6, "stress");
+      std::vector<ParticleField> f;
+      f.push_back({"position", 3, "m", filled(particles.position, 3, "position"), {}});
+      f.push_back({"velocity", 3, "m/s", filled(particles.velocity, 3, "velocity"), {}});
+      f.push_back({"displacement", 3, "m", filled(particles.displacement, 3, "displacement"), {}});
+      f.push_back({"stress", 6, "Pa", stress_in_xdmf_order(stress), {}});
+      f.push_back({"von_mises", 1, "Pa", von_mises(stress), {}});
+      f.push_back({"mean_stress_compression_positive", 1, "Pa", mean_stress_compression_positive(stress), {}});
+      f.push_back({"plastic_strain", 1, "1", filled(particles.plastic_strain, 1, "plastic_strain"), {}});
+      f.push_back({"damage", 1, "1", filled(particles.damage, 1, "damage"), {}});
+      f.push_back({"failure_mode", 1, "1", {},
+                   particles.failure_mode.empty() ? std::vector<int>(n, 0) : particles.failure_mode});
+      return f;
+    }
+
+    /// MPI_Bcast of a string from rank 0 of `comm`.
+    void broadcast(std::string &text, MPI_Comm comm)
+    {
+      unsigned long size = text.size();
+      MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, comm);
+      text.resize(size);
+      MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, comm);
+    }
+
+    /// Selects in `space` (rows x columns) the rows `rows` (ascending): one block per run of
+    /// consecutive rows; none when `rows` is empty.
+    void select_rows(hid_t space, const std::vector<std::int64_t> &rows, std::size_t columns)
+    {
+      H5Sselect_none(space);
+      for (std::size_t a = 0; a < rows.size();)
+      {
+        std::size_t b = a + 1;
+        while (b < rows.size() && rows[b] == rows[b - 1] + 1)
+          ++b;
+        const hsize_t start[2] = {static_cast<hsize_t>(rows[a]), 0};
+        const hsize_t count[2] = {static_cast<hsize_t>(b - a), static_cast<hsize_t>(columns)};
+        if (H5Sselect_hyperslab(space, H5S_SELECT_OR, start, nullptr, count, nullptr) < 0)
+          throw std::runtime_error("HDF5: selecting the particle rows failed");
+        a = b;
+      }
+    }
+  } // namespace
+
+  void write_particle_rows(std::string h5_path, std::string group, const ParticleSnapshot &particles)
+  {
+    const MPI_Comm comm = MPI_COMM_WORLD;
+    broadcast(h5_path, comm);
+    broadcast(group, comm);
+    const std::vector<ParticleField> fields = particle_fields(particles);
+    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fapl_mpio(access, comm, MPI_INFO_NULL);
+    const hid_t file = H5Fopen(h5_path.c_str(), H5F_ACC_RDWR, access);
+    H5Pclose(access);
+    if (file < 0)
+      throw std::runtime_error(h5_path + ": cannot open the HDF5 file on every MPI rank");
+    const hid_t transfer = H5Pcreate(H5P_DATASET_XFER);
+    H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE);
+    herr_t status = 0;
+    for (const ParticleField &f : fields)
+    {
+      const std::string name = group + "/particles/" + f.name;
+      const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+      const hid_t file_space = H5Dget_space(set);
+      select_rows(file_space, particles.global_index, f.columns);
+      const hsize_t dims[2] = {static_cast<hsize_t>(particles.n_rows()), static_cast<hsize_t>(f.columns)};
+      const hid_t memory = H5Screate_simple(f.columns > 1 ? 2 : 1, dims, nullptr);
+      if (particles.n_rows() == 0)
+        H5Sselect_none(memory);
+      const bool integer = f.values.empty() && !f.integers.empty();
+      const void *data = integer ? static_cast<const void *>(f.integers.data()) : f.values.data();
+      if (set < 0 || H5Dwrite(set, integer ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, memory, file_space,
+                              transfer, data) < 0)
+        status = -1;
+      H5Sclose(memory);
+      H5Sclose(file_space);
+      H5Dclose(set);
+    }
+    H5Pclose(transfer);
+    if (H5Fclose(file) < 0 || status < 0)
+      throw std::runtime_error(h5_path + ": writing the particle rows of " + group + " failed");
+  }
+
   void ResultsFile::add_snapshot(double time, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &meshes)
   {
     Impl &m = *impl_;
@@ -486,45 +609,24 @@ namespace app
     const hid_t g = m.group(m.file, info.group);
     m.attribute(g, "time_s", time);
     const hid_t pg = m.group(g, "particles");
-    const std::size_t n = particles.n;
-    auto check_size = [&](const std::vector<double> &v, std::size_t per, const char *what) {
-      if (v.size() != n * per && !(v.empty()))
-        throw std::logic_error(std::string("ParticleSnapshot::") + what + " has the wrong size");
-    };
-    check_size(particles.position, 3, "position");
-    check_size(particles.velocity, 3, "velocity");
-    check_size(particles.displacement, 3, "displacement");
-    check_size(particles.stress, 6, "stress");
-    check_size(particles.plastic_strain, 1, "plastic_strain");
-    check_size(particles.damage, 1, "damage");
-    // missing fields are written as zeros so that the XDMF stays valid
-    auto filled = [&](const std::vector<double> &v, std::size_t per) {
-      return v.empty() ? std::vector<double>(n * per, 0.0) : v;
-    };
-    m.dataset(pg, "position", filled(particles.position, 3), 3, H5T_NATIVE_DOUBLE, "m");
-    m.dataset(pg, "velocity", filled(particles.velocity, 3), 3, H5T_NATIVE_DOUBLE, "m/s");
-    m.dataset(pg, "displacement", filled(particles.displacement, 3), 3, H5T_NATIVE_DOUBLE, "m");
-    const std::vector<double> stress = filled(particles.stress, 6);
-    m.dataset(pg, "stress", stress_in_xdmf_order(stress), 6, H5T_NATIVE_DOUBLE, "Pa");
+    // a distributed body: the datasets are made here for the whole body, and all ranks write
+    // their rows into them below
+    const bool distributed = !particles.global_index.empty();
+    for (const ParticleField &f : particle_fields(particles))
     {
-      const hid_t set = H5Dopen2(pg, "stress", H5P_DEFAULT);
-      m.attribute(set, "components", "xx,xy,xz,yy,yz,zz");
-      m.attribute(set, "sign", "tension positive");
-      H5Dclose(set);
-    }
-    m.dataset(pg, "von_mises", von_mises(stress), 1, H5T_NATIVE_DOUBLE, "Pa");
-    m.dataset(pg, "mean_stress_compression_positive", mean_stress_compression_positive(stress), 1,
-              H5T_NATIVE_DOUBLE, "Pa");
-    m.dataset(pg, "plastic_strain", filled(particles.plastic_strain, 1), 1, H5T_NATIVE_DOUBLE, "1");
-    m.dataset(pg, "damage", filled(particles.damage, 1), 1, H5T_NATIVE_DOUBLE, "1");
-    if (!particles.failure_mode.empty() && particles.failure_mode.size() != n)
-      throw std::logic_error("ParticleSnapshot::failure_mode has the wrong size");
-    m.dataset(pg, "failure_mode",
-              particles.failure_mode.empty() ? std::vector<int>(n, 0) : particles.failure_mode, 1,
-              H5T_NATIVE_INT, "1");
-    {
-      const hid_t set = H5Dopen2(pg, "failure_mode", H5P_DEFAULT);
-      m.attribute(set, "meaning", failure_mode_meaning);
+      const hid_t type = f.integers.empty() ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
+      const hid_t set = m.empty_dataset(pg, f.name, particles.n, f.columns, type, f.units, distributed);
+      if (!distributed && particles.n > 0)
+        Impl::check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                             f.integers.empty() ? static_cast<const void *>(f.values.data()) : f.integers.data()),
+                    std::string("writing ") + f.name);
+      if (std::string(f.name) == "stress")
+      {
+        m.attribute(set, "components", "xx,xy,xz,yy,yz,zz");
+        m.attribute(set, "sign", "tension positive");
+      }
+      if (std::string(f.name) == "failure_mode")
+        m.attribute(set, "meaning", failure_mode_meaning);
       H5Dclose(set);
     }
     H5Gclose(pg);
@@ -547,6 +649,17 @@ namespace app
     H5Gclose(mg);
     H5Gclose(g);
     H5Fflush(m.file, H5F_SCOPE_GLOBAL);
+    if (distributed)
+    {
+      // this rank closes the file, all ranks open it together and write their rows, and this
+      // rank takes it up again
+      H5Fclose(m.file);
+      m.file = -1;
+      write_particle_rows(m.path, info.group, particles);
+      m.file = H5Fopen(m.path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      if (m.file < 0)
+        throw std::runtime_error(m.path + ": cannot open the HDF5 file again");
+    }
     m.snapshots.push_back(std::move(info));
   }
 

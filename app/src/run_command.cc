@@ -354,12 +354,18 @@ namespace app
       return rank;
     }
 
-    /// What the ranks other than 0 observe: nothing but the stop signals (RunLoop agrees on a
-    /// stop over all ranks).
+    /// What the ranks other than 0 observe: the stop signals (RunLoop agrees on a stop over all
+    /// ranks) and the snapshots, whose particle rows every rank writes into rank 0's results.h5
+    /// (write_particle_rows).
     class WorkerObserver : public RunObserver
     {
     public:
       bool stop_requested() override { return StopSignals::received() != 0; }
+      void snapshot(double, const ParticleSnapshot &particles, const std::vector<MeshSnapshot> &) override
+      {
+        if (!particles.global_index.empty())
+          write_particle_rows("", "", particles);
+      }
     };
 
     /// A rank other than 0: its part of the run, with rank 0's exit status.

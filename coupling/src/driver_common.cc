@@ -183,41 +183,27 @@ namespace coupling
   {
     if (domain)
     {
-      // every local particle's row of 17 values, the owned ones gathered in global order
-      constexpr int w = 17;
-      const unsigned int n_local = body.n_particles();
-      std::vector<double> rows(static_cast<std::size_t>(w) * n_local);
+      // the owned particles' rows, named by their global index: results.h5 is written by all
+      // ranks together (no gather on one rank)
+      ParticleSnapshot s;
+      s.n = domain->n_global();
       const auto &x  = body.positions();
       const auto &v  = body.velocities();
       const auto &x0 = body.reference_positions();
-      for (unsigned int i = 0; i < n_local; ++i)
+      for (const std::int32_t i : domain->owned_indices())
       {
-        double *r = &rows[static_cast<std::size_t>(w) * i];
+        s.global_index.push_back(domain->global_ids()[i]);
         for (int d = 0; d < 3; ++d)
         {
-          r[d]     = x[i][d];
-          r[3 + d] = v[i][d];
-          r[6 + d] = x[i][d] - x0[i][d];
+          s.position.push_back(x[i][d]);
+          s.velocity.push_back(v[i][d]);
+          s.displacement.push_back(x[i][d] - x0[i][d]);
         }
         const auto &t = body.stress3(i);
-        const double s6[6] = {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)};
-        std::copy(s6, s6 + 6, r + 9);
-        r[15] = body.plastic_strain(i);
-        r[16] = body.damage(i);
-      }
-      const std::vector<double> all = domain->gather(rows.data(), w);
-      ParticleSnapshot s;
-      const std::size_t n = domain->n_global();
-      s.n = n;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double *r = &all[w * i];
-        s.position.insert(s.position.end(), r, r + 3);
-        s.velocity.insert(s.velocity.end(), r + 3, r + 6);
-        s.displacement.insert(s.displacement.end(), r + 6, r + 9);
-        s.stress.insert(s.stress.end(), r + 9, r + 15);
-        s.plastic_strain.push_back(r[15]);
-        s.damage.push_back(r[16]);
+        s.stress.insert(s.stress.end(), {t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1)});
+        s.plastic_strain.push_back(body.plastic_strain(i));
+        s.damage.push_back(body.damage(i));
+        s.failure_mode.push_back(static_cast<int>(body.history(i).failure_mode));
       }
       return s;
     }

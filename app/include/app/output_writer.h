@@ -94,7 +94,8 @@ namespace app
     ResultsFile(const ResultsFile &) = delete;
     ResultsFile &operator=(const ResultsFile &) = delete;
 
-    /// Appends one snapshot.
+    /// Appends one snapshot. A distributed body's (ParticleSnapshot::global_index) is written
+    /// by all MPI ranks together: every other rank calls write_particle_rows meanwhile.
     void add_snapshot(double time, const coupling::ParticleSnapshot &particles, const std::vector<coupling::MeshSnapshot> &meshes);
     /// Writes the history table (once, at the end).
     void write_history(const std::vector<coupling::HistoryRow> &rows);
@@ -112,6 +113,13 @@ namespace app
     struct Impl;
     std::unique_ptr<Impl> impl_;
   };
+
+  /// The rows of a distributed body's snapshot (ParticleSnapshot::global_index) written into
+  /// the particle datasets of `group` (e.g. "/snapshots/000003") of the HDF5 file `h5_path`, by
+  /// all ranks of MPI_COMM_WORLD together (parallel HDF5, collective): rank 0's ResultsFile calls
+  /// it from add_snapshot, having made the datasets, and every other rank calls it with the same
+  /// snapshot count (its path and group are taken from rank 0). std::runtime_error on failure.
+  void write_particle_rows(std::string h5_path, std::string group, const coupling::ParticleSnapshot &particles);
 
   /// Runs tools/`script_name` with `args` under python3 ($COSIM_PYTHON if set), expected to write
   /// `png`. Returns "" on success, else a one-line reason (python3 or matplotlib missing: the

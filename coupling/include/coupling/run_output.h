@@ -7,6 +7,7 @@
 #include <sph/state_arrays.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -36,9 +37,14 @@ namespace coupling
 
   /// Particle fields at one instant, flat arrays: vectors as x0,y0,z0,x1,...; stress as the six
   /// components xx,yy,zz,yz,xz,xy per particle, tension positive [Pa].
+  /// A serial body's snapshot holds the n particles in order (global_index empty); a distributed
+  /// body's holds on each MPI rank the rows of the particles that rank owns, global_index naming
+  /// each row's place among the body's n particles (ascending), and results.h5 is written by all
+  /// ranks together (app::ResultsFile).
   struct ParticleSnapshot
   {
-    std::size_t n = 0;
+    std::size_t n = 0; ///< particles of the whole body
+    std::vector<std::int64_t> global_index; ///< each row's particle (empty: rows 0..n-1)
     std::vector<double> position;        ///< [m]
     std::vector<double> velocity;        ///< [m/s]
     std::vector<double> displacement;    ///< [m]
@@ -48,6 +54,8 @@ namespace coupling
     /// how each particle failed, sph::FailureMode as an integer: 0 none, 1 tensile, 2 shear,
     /// 3 crushed (empty: not recorded)
     std::vector<int> failure_mode;
+    /// Number of rows held here.
+    std::size_t n_rows() const { return global_index.empty() ? n : global_index.size(); }
   };
 
   /// A platen or cutter mesh at one instant (fem's type; MeshSnapshot::name names it in the
