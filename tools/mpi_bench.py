@@ -11,7 +11,10 @@ history.csv column from the 1-rank run's, relative to the column's largest value
 index; 8 is the dissipated energy). On a shared machine the wall-clock rates
 depend on the load: the load average is printed with every result.
 
-Usage: tools/mpi_bench.py [--dx DX] [--end-strain E] [--ranks 2,3] [--out DIR]
+Also the peak RSS per owned particle of each rank [KiB]. --serial-rate R takes the 1-rank rate
+from an earlier run instead of running it again (the history is then not compared).
+
+Usage: tools/mpi_bench.py [--dx DX] [--end-strain E] [--ranks 2,3] [--serial-rate R] [--out DIR]
 """
 import argparse
 import csv
@@ -63,6 +66,9 @@ def main():
     p.add_argument("--dx", type=float, default=0.002)
     p.add_argument("--end-strain", type=float, default=0.0005)
     p.add_argument("--ranks", default="2")
+    p.add_argument("--serial-rate", type=float, default=0.0,
+                   help="particle-steps/s of an earlier 1-rank run of the same case: the 1-rank "
+                        "run is skipped (a 1 mm UCS takes 15 minutes on one core)")
     p.add_argument("--out", default=str(root / "docs" / "results" / "bench"))
     p.add_argument("--cosim", default=os.environ.get("COSIM_BINARY", str(root / "build" / "bin" / "cosim")))
     a = p.parse_args()
@@ -73,7 +79,8 @@ def main():
     mpirun = ["mpirun", "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
     results = []
     try:
-        for n in [1] + [int(r) for r in a.ranks.split(",")]:
+        serial = [] if a.serial_rate > 0 else [1]
+        for n in serial + [int(r) for r in a.ranks.split(",")]:
             folder = work / f"ranks{n}"
             times = work / f"time{n}"
             # each rank under /usr/bin/time -v, its report in its own file
@@ -90,17 +97,20 @@ def main():
             rss = [peak_rss_mib(f"{times}.{r}") for r in range(n)]
             cpu = [cpu_seconds(f"{times}.{r}") for r in range(n)]
             rate = s["n_particles"] * s["n_steps"] / s["wall_seconds"]
+            owned = s.get("particles_per_rank", [s["n_particles"]])
             results.append(dict(
                 ranks=n, particles=s["n_particles"], steps=s["n_steps"],
                 wall_s=round(s["wall_seconds"], 2), particle_steps_per_s=round(rate),
                 efficiency=None, peak_rss_mib_per_rank=" ".join(f"{x:.0f}" for x in rss),
                 cpu_s_per_rank=" ".join(f"{x:.1f}" for x in cpu),
+                kib_per_owned_particle=" ".join(f"{1024 * x / c:.2f}" for x, c in zip(rss, owned)),
                 ghost_fraction=round(s.get("ghost_fraction", 0.0), 3),
                 halo_bytes_per_step=int(s.get("halo_bytes_per_step", 0)),
                 history_difference="%.1e in column %d" % history_difference(
-                    history(work / "ranks1" / "history.csv"), history(folder / "history.csv")),
+                    history(work / "ranks1" / "history.csv"), history(folder / "history.csv"))
+                if serial else "not compared (--serial-rate)",
                 load=os.getloadavg()[0]))
-            base = results[0]["particle_steps_per_s"]
+            base = a.serial_rate if a.serial_rate > 0 else results[0]["particle_steps_per_s"]
             results[-1]["efficiency"] = round(rate / base / n, 3)
             print(results[-1], flush=True)
     finally:
