@@ -7,6 +7,7 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -503,6 +504,7 @@ namespace app
       const char *units;
       std::vector<double> values;
       std::vector<int> integers;
+      bool integer = false; ///< held in `integers`, written as integers
     };
 
     /// The datasets of /snapshots/NNNNNN/particles for the rows `particles` holds, fields it
@@ -530,6 +532,7 @@ namespace app
       f.push_back({"damage", 1, "1", filled(particles.damage, 1, "damage"), {}});
       f.push_back({"failure_mode", 1, "1", {},
                    particles.failure_mode.empty() ? std::vector<int>(n, 0) : particles.failure_mode});
+      f.back().integer = true;
       return f;
     }
 
@@ -542,22 +545,76 @@ namespace app
       MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, comm);
     }
 
-    /// Selects in `space` (rows x columns) the rows `rows` (ascending): one block per run of
-    /// consecutive rows; none when `rows` is empty.
-    void select_rows(hid_t space, const std::vector<std::int64_t> &rows, std::size_t columns)
+    /// The rows of `fields` (this rank's, at `global_index`, ascending) moved to the rank whose
+    /// block of the body's `n` rows holds them: rank r gets rows [n r / N, n (r + 1) / N) in
+    /// order, the first of them returned in `first`. One MPI_Alltoallv, so that each rank writes
+    /// one contiguous block (a union of many row runs is slow to select in HDF5).
+    std::vector<ParticleField> rows_in_blocks(const std::vector<ParticleField> &fields,
+                                              const std::vector<std::int64_t> &global_index,
+                                              const std::size_t n, const MPI_Comm comm, std::size_t &first)
     {
-      H5Sselect_none(space);
-      for (std::size_t a = 0; a < rows.size();)
+      int rank = 0, size = 1;
+      MPI_Comm_rank(comm, &rank);
+      MPI_Comm_size(comm, &size);
+      auto block_start = [&](const int r) { return static_cast<std::int64_t>(n * static_cast<std::size_t>(r) / size); };
+      std::size_t width = 1; // the global index, then every field's columns
+      for (const ParticleField &f : fields)
+        width += f.columns;
+      std::vector<double> send;
+      send.reserve(width * global_index.size());
+      for (std::size_t i = 0; i < global_index.size(); ++i)
       {
-        std::size_t b = a + 1;
-        while (b < rows.size() && rows[b] == rows[b - 1] + 1)
-          ++b;
-        const hsize_t start[2] = {static_cast<hsize_t>(rows[a]), 0};
-        const hsize_t count[2] = {static_cast<hsize_t>(b - a), static_cast<hsize_t>(columns)};
-        if (H5Sselect_hyperslab(space, H5S_SELECT_OR, start, nullptr, count, nullptr) < 0)
-          throw std::runtime_error("HDF5: selecting the particle rows failed");
-        a = b;
+        send.push_back(static_cast<double>(global_index[i]));
+        for (const ParticleField &f : fields)
+          for (std::size_t c = 0; c < f.columns; ++c)
+            send.push_back(f.integer ? static_cast<double>(f.integers[i * f.columns + c])
+                                     : f.values[i * f.columns + c]);
       }
+      std::vector<int> send_counts(size), send_offsets(size), receive_counts(size), receive_offsets(size);
+      std::size_t row = 0;
+      for (int r = 0; r < size; ++r)
+      {
+        const std::size_t end = static_cast<std::size_t>(
+          std::lower_bound(global_index.begin(), global_index.end(), block_start(r + 1)) - global_index.begin());
+        send_offsets[r] = static_cast<int>(row * width);
+        send_counts[r]  = static_cast<int>((end - row) * width);
+        row             = end;
+      }
+      MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
+      int total = 0;
+      for (int r = 0; r < size; ++r)
+      {
+        receive_offsets[r] = total;
+        total += receive_counts[r];
+      }
+      std::vector<double> received(static_cast<std::size_t>(total));
+      MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE, received.data(),
+                    receive_counts.data(), receive_offsets.data(), MPI_DOUBLE, comm);
+      first = static_cast<std::size_t>(block_start(rank));
+      const std::size_t rows = static_cast<std::size_t>(block_start(rank + 1)) - first;
+      std::vector<ParticleField> out;
+      for (const ParticleField &f : fields)
+      {
+        out.push_back({f.name, f.columns, f.units, {}, {}, f.integer});
+        if (f.integer)
+          out.back().integers.resize(rows * f.columns);
+        else
+          out.back().values.resize(rows * f.columns);
+      }
+      for (std::size_t at = 0; at + width <= received.size(); at += width)
+      {
+        const std::size_t k = static_cast<std::size_t>(received[at]) - first;
+        std::size_t column = at + 1;
+        for (ParticleField &f : out)
+          for (std::size_t c = 0; c < f.columns; ++c, ++column)
+          {
+            if (f.integer)
+              f.integers[k * f.columns + c] = static_cast<int>(received[column]);
+            else
+              f.values[k * f.columns + c] = received[column];
+          }
+      }
+      return out;
     }
   } // namespace
 
@@ -566,7 +623,9 @@ namespace app
     const MPI_Comm comm = MPI_COMM_WORLD;
     broadcast(h5_path, comm);
     broadcast(group, comm);
-    const std::vector<ParticleField> fields = particle_fields(particles);
+    std::size_t first = 0;
+    const std::vector<ParticleField> fields =
+      rows_in_blocks(particle_fields(particles), particles.global_index, particles.n, comm, first);
     const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
     H5Pset_fapl_mpio(access, comm, MPI_INFO_NULL);
     const hid_t file = H5Fopen(h5_path.c_str(), H5F_ACC_RDWR, access);
@@ -579,14 +638,19 @@ namespace app
     for (const ParticleField &f : fields)
     {
       const std::string name = group + "/particles/" + f.name;
+      const bool integer = f.integer;
+      const hsize_t rows = (integer ? f.integers.size() : f.values.size()) / f.columns;
       const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
       const hid_t file_space = H5Dget_space(set);
-      select_rows(file_space, particles.global_index, f.columns);
-      const hsize_t dims[2] = {static_cast<hsize_t>(particles.n_rows()), static_cast<hsize_t>(f.columns)};
-      const hid_t memory = H5Screate_simple(f.columns > 1 ? 2 : 1, dims, nullptr);
-      if (particles.n_rows() == 0)
+      const hsize_t start[2] = {first, 0}, count[2] = {rows, f.columns};
+      const hid_t memory = H5Screate_simple(f.columns > 1 ? 2 : 1, count, nullptr);
+      if (rows > 0)
+        H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+      else
+      {
+        H5Sselect_none(file_space);
         H5Sselect_none(memory);
-      const bool integer = f.values.empty() && !f.integers.empty();
+      }
       const void *data = integer ? static_cast<const void *>(f.integers.data()) : f.values.data();
       if (set < 0 || H5Dwrite(set, integer ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE, memory, file_space,
                               transfer, data) < 0)
@@ -614,11 +678,11 @@ namespace app
     const bool distributed = !particles.global_index.empty();
     for (const ParticleField &f : particle_fields(particles))
     {
-      const hid_t type = f.integers.empty() ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
+      const hid_t type = f.integer ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
       const hid_t set = m.empty_dataset(pg, f.name, particles.n, f.columns, type, f.units, distributed);
       if (!distributed && particles.n > 0)
         Impl::check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                             f.integers.empty() ? static_cast<const void *>(f.values.data()) : f.integers.data()),
+                             f.integer ? static_cast<const void *>(f.integers.data()) : f.values.data()),
                     std::string("writing ") + f.name);
       if (std::string(f.name) == "stress")
       {
