@@ -152,6 +152,30 @@ TEST(Restart, ElasticPlatensWithFrictionContinueBitwise)
   EXPECT_TRUE(identical(whole.rows, second.rows));
 }
 
+// Body-fitted particles (rings): the checkpoint holds them, the restart rebuilds the same set
+// from the case, and the run continues bitwise; a lattice checkpoint does not fit the rings.
+TEST(Restart, BodyFittedParticlesContinueBitwise)
+{
+  const std::vector<std::string> extra = {"SPH/Particle arrangement=body-fitted"};
+  RunRecorder whole;
+  const std::size_t n_steps = coupling::run_case(small_case(extra), whole).n_steps;
+  ASSERT_GT(n_steps, 60u);
+  auto with_stop = extra;
+  with_stop.push_back("Output/Stop after steps=" + std::to_string(n_steps / 2));
+  RunRecorder first;
+  EXPECT_THROW(coupling::run_case(small_case(with_stop), first), coupling::RunInterrupted);
+  RunRecorder second;
+  coupling::run_case(small_case(with_stop), second, &first.last_checkpoint);
+  EXPECT_TRUE(identical(whole.rows, second.rows));
+  // the rings of this case (1,420 particles) are not the lattice's (1,540)
+  RunRecorder lattice;
+  EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=10"}), lattice),
+               coupling::RunInterrupted);
+  RunRecorder refused;
+  EXPECT_THROW(coupling::run_case(small_case(extra), refused, &lattice.last_checkpoint),
+               coupling::InputError);
+}
+
 TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
 {
   RunRecorder r;

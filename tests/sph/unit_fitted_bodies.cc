@@ -33,22 +33,19 @@ namespace
   /// a particle too.
   bool mirror_symmetric(const std::vector<Vector<3>> &x, const int axis, const double centre, const double tol)
   {
+    // sorted by the first coordinate: the candidates for a mirror image lie in a window of it
     std::vector<Vector<3>> sorted = x;
-    auto less = [](const Vector<3> &a, const Vector<3> &b) {
-      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-    };
-    std::sort(sorted.begin(), sorted.end(), less);
+    std::sort(sorted.begin(), sorted.end(),
+              [](const Vector<3> &a, const Vector<3> &b) { return a[0] < b[0]; });
     for (const auto &p : x)
       {
         Vector<3> m = p;
         m[axis]     = 2 * centre - p[axis];
+        auto q      = std::lower_bound(sorted.begin(), sorted.end(), m[0] - tol,
+                                  [](const Vector<3> &a, const double v) { return a[0] < v; });
         bool found  = false;
-        for (const auto &q : sorted)
-          if ((q - m).norm() < tol)
-            {
-              found = true;
-              break;
-            }
+        for (; q != sorted.end() && (*q)[0] <= m[0] + tol && !found; ++q)
+          found = (*q - m).norm() < tol;
         if (!found)
           return false;
       }
@@ -118,6 +115,64 @@ namespace
         const auto d = nearest_distances(b.positions, 2 * dx);
         EXPECT_GT(*std::min_element(d.begin(), d.end()), 0.9 * dx);
         EXPECT_LT(*std::max_element(d.begin(), d.end()), 1.1 * dx);
+      }
+  }
+
+  TEST(SphFittedBodies, SpacingIsNearUniformAtEveryAcceptedResolution)
+  {
+    // diameters from the coarsest the case files accept (10 spacings, dx <= D/10) to 30 spacings
+    // in steps of half a spacing, so that R/dx - 1/2 meets every rounding edge of the ring count
+    // (D/dx = 2k + 2, where dr = R/(n + 1/2) is farthest from dx): every particle's nearest
+    // neighbour within 15 % of dx (measured: 0.877 to 1.030 dx). Bounds: dr within 1/(2n + 1)
+    // <= 11 % of dx for n >= 4 rings, the arc spacing 2 pi k dr / (2 round(pi k)) within 5 % of
+    // dr, the layer distance within 5 % of dx for >= 10 layers
+    const double dx = 1e-3;
+    double       lo = 1e300, hi = 0;
+    for (double n = 10.0; n <= 30.0 + 1e-9; n += 0.5)
+      {
+        const double D = n * dx, t = 10.3 * dx; // 10.3: layers 3 % off dx
+        for (const auto &body : {make_fitted_cylinder(D, t, dx), make_fitted_disc(D, t, dx)})
+          {
+            const auto d = nearest_distances(body.positions, 2 * dx);
+            lo           = std::min(lo, *std::min_element(d.begin(), d.end()));
+            hi           = std::max(hi, *std::max_element(d.begin(), d.end()));
+          }
+      }
+    EXPECT_GT(lo, 0.85 * dx);
+    EXPECT_LT(hi, 1.15 * dx);
+  }
+
+  TEST(SphFittedBodies, VolumesAreTheTrueBodyAtAnySpacing)
+  {
+    // the annuli's areas are pi ((k + 1/2)^2 - (k - 1/2)^2) dr^2 and the centre's pi dr^2 / 4:
+    // they sum to pi (n + 1/2)^2 dr^2 = pi R^2 exactly, so the volumes before scaling are the
+    // true volume to round-off; 1e-3 is the requirement, 1e-12 what exact arithmetic leaves
+    for (const double dx : {0.0025, 0.0021, 0.00125})
+      {
+        const double D = 0.05, L = 0.1, t = 0.025, R = 0.5 * D;
+        const auto   c = make_fitted_cylinder(D, L, dx);
+        const auto   b = make_fitted_disc(D, t, dx);
+        EXPECT_NEAR(total(c.volumes) / (pi * R * R * L), 1.0, 1e-12);
+        EXPECT_NEAR(total(b.volumes) / (pi * R * R * t), 1.0, 1e-12);
+        // and each layer's rings fill the true circle: the cylinder's end layer holds pi R^2 dz
+        const double dz = c.cell_size[2];
+        double       end_layer = 0;
+        for (std::size_t i = 0; i < c.positions.size(); ++i)
+          if (c.positions[i][2] < dz)
+            end_layer += c.volumes[i];
+        EXPECT_NEAR(end_layer / (pi * R * R * dz), 1.0, 1e-12);
+        // the outer particles lie half a ring spacing inside r = R (to round-off of R), the
+        // contact radius of the driver: their contact surface is the true round surface
+        double r_max = 0;
+        for (const auto &p : c.positions)
+          r_max = std::max(r_max, std::hypot(p[0], p[1]));
+        EXPECT_NEAR(r_max + 0.5 * c.cell_size[0], R, 1e-12 * R);
+        // the cylinder's end layers are flat, at half a layer from the true end faces
+        double z_lo = L, z_hi = 0;
+        for (const auto &p : c.positions)
+          z_lo = std::min(z_lo, p[2]), z_hi = std::max(z_hi, p[2]);
+        EXPECT_NEAR(z_lo, 0.5 * dz, 1e-12 * L);
+        EXPECT_NEAR(z_hi, L - 0.5 * dz, 1e-12 * L);
       }
   }
 
