@@ -6,10 +6,14 @@
 /// round). Each set is a stack of equal layers along the body's axis; a layer is one centre
 /// particle and rings k = 1..n at radius k dr, with dr = R / (n + 1/2), each ring holding an
 /// even number of particles close to 2 pi k, placed symmetrically about both in-plane axes.
-/// Volumes are the annuli's shares, so they sum to the true volume; spacing is near-uniform
-/// (dr radially, 2 pi r / n_k around). Returned as a Lattice, so every user of a lattice takes
-/// them unchanged; cell_size holds (dr, dr, layer) for the cylinder and (dr, layer, dr) for the
-/// disc.
+/// Volumes are the annuli's shares, ring k's annulus reaching from (k - 1/2) dr to (k + 1/2) dr
+/// (the outer one to R exactly), so they sum to the true volume; spacing is near-uniform (dr
+/// radially, 2 pi r / n_k around; every nearest-neighbour distance within 15 % of dx for D >=
+/// 10 dx). The outer ring sits half a ring spacing inside the surface rather than on it, as a
+/// lattice's outer cells do: a contact radius of dr/2 (cell_size / 2) then puts the particles'
+/// contact surface on the true one, and every particle stands for a full annulus share. Returned
+/// as a Lattice, so every user of a lattice takes them unchanged; cell_size holds (dr, dr, layer)
+/// for the cylinder and (dr, layer, dr) for the disc.
 
 #include <sph/lattice.h>
 
