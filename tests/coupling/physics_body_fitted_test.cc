@@ -23,6 +23,7 @@ namespace
     p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
     p.rock.poissons_ratio   = 0.28;
     p.output.n_history_rows = 200;
+    p.sph.n_threads         = 1; // small runs: one thread costs no more than two (no waits)
     return p;
   }
 } // namespace
