@@ -15,11 +15,25 @@ import sys
 
 
 def layer(values, spacing):
-    """Mask of the particles in the one lattice layer nearest to 0 (on the + side)."""
+    """Mask of the particles in the one layer nearest to 0 (on the + side): a lattice layer, or
+    of body-fitted rings those within half a spacing of it."""
     import numpy as np
 
     target = np.min(np.abs(values))
-    return np.abs(values - target) < 0.25 * spacing
+    return np.abs(values - target) < 0.5 * spacing
+
+
+def particle_spacing(x0):
+    """The particle spacing: a lattice's cell (the step between its x coordinates); for
+    body-fitted rings, whose x coordinates take many values, the edge of the cube each particle
+    fills in the round specimen (pi/4 of its bounding box)."""
+    import numpy as np
+
+    coords = np.unique(np.round(x0[:, 0], 9))
+    step = np.min(np.diff(coords)) if len(coords) > 1 else 1.0
+    box = np.prod(np.ptp(x0, axis=0))
+    rings = (0.25 * np.pi * box / len(x0)) ** (1.0 / 3.0)
+    return step if step > 0.5 * rings else rings
 
 
 def grid(a, b, c, spacing):
@@ -86,8 +100,7 @@ def main(argv):
         times = {k: snaps[k].attrs.get("time_s", float("nan")) for k in keys}
     last = keys[-1]
     onset = next((k for k in keys if np.any(damage[k] > 0)), None)
-    coords = np.unique(np.round(x0[:, 0], 9))
-    spacing = np.min(np.diff(coords))
+    spacing = particle_spacing(x0)
     centre = x0.mean(axis=0)
     cmap = plt.get_cmap("inferno_r").copy()
     cmap.set_bad("white")

@@ -466,6 +466,9 @@ namespace app
         r.fail("SPH/Particle spacing", "too coarse for the " + mm(c.block_length) + " x " + mm(c.block_width) + " x " +
                                          mm(c.block_height) + " block: at most 1/10 of its smallest side (" +
                                          mm(smallest / 10) + ")");
+      r.require(p.particle_arrangement == sph::ParticleArrangement::lattice, "SPH/Particle arrangement",
+                "body-fitted is for the UCS/CTCS cylinder and the BTS disc; the rock block of " + p.test +
+                  " is a lattice (its flat faces are exact): set it to lattice");
       r.require(p.sph.spacing <= 0.5 * c.penetration, "SPH/Particle spacing",
                 "must be at most half the Cutter/Penetration (" + mm(0.5 * c.penetration) +
                   ") so that at least two particle layers are cut");

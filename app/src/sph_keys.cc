@@ -28,6 +28,10 @@ namespace app::keys
                   [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1]");
     s.add("Loaded face correction", p.loaded_face_correction,
           "UCS/CTCS: move the symmetric force's boundary term onto the layer the platen loads");
+    s.add_enum("Particle arrangement", p.particle_arrangement, "lattice|body-fitted",
+               {sph::ParticleArrangement::lattice, sph::ParticleArrangement::body_fitted},
+               "UCS/CTCS cylinder, BTS disc: cell centres of a cubic lattice (staircase round surface) or "
+               "body-fitted rings (outer ring half a spacing inside the round surface)");
     s.add<int>("Threads", n.n_threads, "threads of the run (SPH and coupling loops); 0 = all cores",
                [](int v) { return v >= 0 && v <= 4096; }, "must be in [0, 4096] (0 = all cores)");
     s.add_enum("Pair force precision", n.single_precision, "mixed|double", {true, false},

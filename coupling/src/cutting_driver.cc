@@ -64,6 +64,9 @@ namespace coupling
     if (cutting_ != (c.shape == "disc"))
       throw InputError("Cutter/Shape: " + c.shape + " does not fit Test/Type = " + prm_.test +
                        "; linear-cutting takes disc, indentation wedge, cone or flat");
+    if (prm_.particle_arrangement != sph::ParticleArrangement::lattice)
+      throw InputError("SPH/Particle arrangement: body-fitted is for the UCS/CTCS cylinder and the BTS disc; "
+                       "the rock block of " + prm_.test + " is a lattice: set it to lattice");
     build_block();
     build_cutter();
     choose_time_step();

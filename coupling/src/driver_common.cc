@@ -173,9 +173,17 @@ namespace coupling
     }
     const RockCase &rock = p.rock_case;
     if (rock.strength_scatter > 0)
+    {
+      // the hash cell of each particle's draw: a lattice's cell (one particle each); body-fitted
+      // rings put particles anywhere, at least 0.85 dx apart, so cells of dx / 4 (diagonal
+      // 0.43 dx) hold one particle each and every particle draws its own strength
+      const double cell = p.particle_arrangement == sph::ParticleArrangement::lattice ?
+                            p.sph.spacing :
+                            0.25 * p.sph.spacing;
       body->set_strength_factors(sph::weibull_strength_factors<3>(
-        body->reference_positions(), p.sph.spacing, rock.strength_scatter,
+        body->reference_positions(), cell, rock.strength_scatter,
         static_cast<std::uint64_t>(rock.scatter_seed)));
+    }
     return body;
   }
 

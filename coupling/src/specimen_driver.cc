@@ -10,6 +10,7 @@
 #include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/domain.h>
+#include <sph/fitted_bodies.h>
 #include <sph/lattice.h>
 
 
@@ -123,11 +124,19 @@ namespace coupling
 
   void SpecimenDriver::build_specimen()
   {
-    const double dx               = prm_.sph.spacing;
-    const sph::Lattice<3> lattice = bts_ ? sph::make_disc<3>(prm_.diameter, prm_.length, dx)
-                                         : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx);
+    const double dx   = prm_.sph.spacing;
+    const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
+    const sph::Lattice<3> lattice =
+      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx)
+                     : sph::make_disc<3>(prm_.diameter, prm_.length, dx))
+           : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx)
+                     : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
+    // half the particle extent along the load: the cylinder's layer distance L / round(L / dx),
+    // the disc's lattice cell or (body-fitted) ring spacing, so that the contact surface of the
+    // outer particles is the specimen's true face (the fitted disc's outer ring lies half a ring
+    // spacing inside r = R, with a particle on the loaded diameter at the top and the bottom)
     contact_radius_               = 0.5 * lattice.cell_size[2];
     x0_global_                    = lattice.positions;
     const int n_ranks             = mpi_ranks();

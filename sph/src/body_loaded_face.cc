@@ -37,7 +37,12 @@ namespace sph
     // the boundary term reaches two kernel supports deep: particles within 2h of the surface
     // have truncated supports (L != I), and their L enters the sums of their neighbours
     const double depth = 4.0 * h_max + 0.01 * prm_.spacing;
-    // columns: particles with the same lateral lattice position, outer particle first
+    // columns: particles with the same lateral position, outer particle first. The generators
+    // repeat a layer's lateral positions exactly in every layer (lattice cells and body-fitted
+    // rings alike); a key of a thousandth of the spacing tells apart particles of one layer,
+    // which lie at least 0.85 spacings apart, but a key of a whole spacing would not for rings
+    // (two ring particles can round to the same lattice cell)
+    const double quantum = 1e-3 * prm_.spacing;
     std::map<std::array<long, dim>, std::vector<std::pair<double, unsigned int>>> columns;
     for (unsigned int i = 0; i < n_particles(); ++i)
       {
@@ -47,7 +52,7 @@ namespace sph
         const Vector<dim>     lateral = p_.x0[i] - height * n;
         std::array<long, dim> key;
         for (int d = 0; d < dim; ++d)
-          key[d] = std::lround(lateral[d] / prm_.spacing);
+          key[d] = std::lround(lateral[d] / quantum);
         columns[key].emplace_back(-height, i);
       }
     face_area_.resize(n_particles(), 0.0);

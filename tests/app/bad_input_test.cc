@@ -412,6 +412,19 @@ TEST(BadInput, CutTooShortForTheDiscToEnterTheRock)
                    {"Cutter/Cut length", "too short", "80.8"});
 }
 
+TEST(BadInput, BodyFittedParticlesAreForTheCylinderAndTheDisc)
+{
+  // the cutting block is a lattice (flat faces); a body-fitted arrangement there would be a key
+  // read but ignored
+  Sandbox box;
+  expect_bad_input(box,
+                   {"run", source("cases/linear-cutting/linear-cutting.prm"), "--set",
+                    "SPH/Particle arrangement=body-fitted"},
+                   {"SPH/Particle arrangement", "lattice"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "SPH/Particle arrangement=rings"},
+                   {"SPH/Particle arrangement", "body-fitted"});
+}
+
 // The effects' keys: each range, and each key that only acts with another (no key read but
 // ignored): the closure stress without closure, rate sensitivity without strength, the frame on
 // an elastic platen, the frame's damping without a frame.

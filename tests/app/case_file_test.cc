@@ -88,6 +88,17 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
   expect_close(t.rock.cohesion, 28.83e6);
 }
 
+TEST(CaseFile, ParticleArrangementReadsAndIsWrittenBack)
+{
+  const auto lattice = app::read_case_file(source("cases/bts/bts.prm"), {});
+  EXPECT_EQ(lattice.parameters.particle_arrangement, sph::ParticleArrangement::lattice);
+  const auto fitted = app::read_case_file(source("cases/bts/bts.prm"), {"SPH/Particle arrangement=body-fitted"});
+  EXPECT_EQ(fitted.parameters.particle_arrangement, sph::ParticleArrangement::body_fitted);
+  // a restart reads used_parameters.prm: it must build the same particles
+  EXPECT_NE(fitted.used_parameters.find("set Particle arrangement"), std::string::npos);
+  EXPECT_NE(fitted.used_parameters.find("body-fitted"), std::string::npos);
+}
+
 TEST(CaseFile, MeasuredStrengthUsesTable3)
 {
   const auto p = app::read_case_file(source("cases/ctcs/ctcs.prm"),

@@ -152,6 +152,35 @@ TEST(Restart, ElasticPlatensWithFrictionContinueBitwise)
   EXPECT_TRUE(identical(whole.rows, second.rows));
 }
 
+// Body-fitted particles (rings): the checkpoint holds them, the restart rebuilds the same set
+// from the case, and the run continues bitwise; a lattice checkpoint does not fit the rings.
+TEST(Restart, BodyFittedParticlesContinueBitwise)
+{
+  // the first 120 steps (13 history rows), whole and stopped at
+  // step 60 then continued
+  auto fitted_until = [](const long step) {
+    // one thread: a small run waits less (the threaded sums are the other tests')
+    return small_case({"SPH/Particle arrangement=body-fitted", "SPH/Threads=1",
+                       "Output/Stop after steps=" + std::to_string(step)});
+  };
+  RunRecorder whole;
+  EXPECT_THROW(coupling::run_case(fitted_until(120), whole), coupling::RunInterrupted);
+  ASSERT_GT(whole.rows.size(), 10u);
+  RunRecorder first;
+  EXPECT_THROW(coupling::run_case(fitted_until(60), first), coupling::RunInterrupted);
+  RunRecorder second;
+  EXPECT_THROW(coupling::run_case(fitted_until(120), second, &first.last_checkpoint),
+               coupling::RunInterrupted);
+  EXPECT_TRUE(identical(whole.rows, second.rows));
+  // the lattice's checkpoint does not fit the rings (another particle count)
+  RunRecorder lattice;
+  EXPECT_THROW(coupling::run_case(small_case({"Output/Stop after steps=10"}), lattice),
+               coupling::RunInterrupted);
+  RunRecorder refused;
+  EXPECT_THROW(coupling::run_case(fitted_until(120), refused, &lattice.last_checkpoint),
+               coupling::InputError);
+}
+
 TEST(Restart, PeriodicCheckpointsDoNotChangeTheRun)
 {
   RunRecorder r;

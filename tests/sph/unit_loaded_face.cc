@@ -1,6 +1,7 @@
 // Loaded faces (Body::add_loaded_face): a uniform stress is in equilibrium with a load on the
 // outer layer alone, and the loaded areas add up to the face.
 #include <sph/body.h>
+#include <sph/fitted_bodies.h>
 #include <sph/lattice.h>
 
 #include <gtest/gtest.h>
@@ -15,12 +16,15 @@ namespace
   /// free lateral strain (uniaxial stress), its two end faces declared loaded or not.
   struct CompressedCylinder
   {
-    Lattice<3> lattice = make_cylinder<3>(0.05, 0.1, 0.005);
+    Lattice<3> lattice;
     Body<3>    body;
     double     sigma = 0; // axial stress of the affine state [Pa], tension +
 
-    explicit CompressedCylinder(const bool loaded, const bool single_precision = true)
-      : body(numerics(single_precision), rock(), lattice.positions, lattice.volumes)
+    /// `fitted`: the body-fitted cylinder of rings (sph/fitted_bodies.h), same layers along z
+    explicit CompressedCylinder(const bool loaded, const bool single_precision = true,
+                                const bool fitted = false)
+      : lattice(fitted ? make_fitted_cylinder(0.05, 0.1, 0.005) : make_cylinder<3>(0.05, 0.1, 0.005))
+      , body(numerics(single_precision), rock(), lattice.positions, lattice.volumes)
     {
       if (loaded)
         {
@@ -120,6 +124,37 @@ namespace
     EXPECT_NEAR(bottom / c.lattice.true_section_area, 1.0, 2e-3);
   }
 
+  TEST(SphLoadedFace, BodyFittedCylinderOuterLayerTakesTheLoad)
+  {
+    // the same on the cylinder of rings: every column is one ring particle through all layers
+    // (a column key of a whole spacing merged ring particles that round to one lattice cell)
+    CompressedCylinder loaded(true, false, true);
+    std::size_t        n_layer = 0;
+    for (const auto &p : loaded.lattice.positions)
+      n_layer += p[2] < 0.005 ? 1 : 0;
+    std::size_t n_outer_top = 0;
+    double      top = 0, bottom = 0;
+    for (unsigned i = 0; i < loaded.body.n_particles(); ++i)
+      {
+        const double a = loaded.body.loaded_face_areas()[i];
+        EXPECT_GE(a, 0.0);
+        if (a > 0)
+          n_outer_top += loaded.lattice.positions[i][2] > 0.05 ? 1 : 0;
+        (loaded.lattice.positions[i][2] > 0.05 ? top : bottom) += a;
+      }
+    EXPECT_EQ(n_outer_top, n_layer) << "one column per particle of the end layer";
+    // the rings' volumes are the true section exactly; the loaded areas add up to it within the
+    // 0.2 % of the lattice test (their sum is the kernel sum of s_i, not the volumes)
+    EXPECT_NEAR(top / loaded.lattice.true_section_area, 1.0, 2e-3);
+    EXPECT_NEAR(bottom / loaded.lattice.true_section_area, 1.0, 2e-3);
+    // a uniform stress is balanced by a load on the outer layer alone: the layer force is the
+    // stress times the true section (2e-3 as for the lattice), the layers beneath round-off only
+    const double load = -loaded.sigma * loaded.lattice.true_section_area;
+    EXPECT_NEAR(loaded.layer_force(0) / load, 1.0, 2e-3);
+    for (int k = 1; k < 5; ++k)
+      EXPECT_NEAR(loaded.layer_force(k) / load, 0.0, 1e-9) << "layer " << k;
+  }
+
   TEST(SphLoadedFace, ZeroNormalIsRefused)
   {
     CompressedCylinder c(false);
@@ -153,30 +188,33 @@ namespace
     // calibrated on a flat face, left 0.19 of the load unbalanced at the rim and the ends.
     using namespace sph;
     const double     p = 10e6, K = 50e9 / (3 * (1 - 2 * 0.25)), eps = -p / (3 * K);
-    const Lattice<3> lat = make_cylinder<3>(0.05, 0.1, 0.005);
-    Parameters       prm;
-    prm.spacing   = 0.005;
-    prm.hourglass = 0;
-    MaterialParameters m;
-    m.model          = RockModel::elastic;
-    m.youngs_modulus = 50e9;
-    m.poissons_ratio = 0.25;
-    Body<3> body(prm, m, lat.positions, lat.volumes);
-    body.add_loaded_face(Vector<3>(0, 0, 1));
-    body.add_loaded_face(Vector<3>(0, 0, -1));
-    const double dt = 1e-6;
-    body.compute_forces();
-    for (unsigned i = 0; i < body.n_particles(); ++i)
-      body.set_velocity(i, (eps / dt) * body.positions()[i]);
-    body.integrate(dt);
-    for (unsigned i = 0; i < body.n_particles(); ++i) // at rest: no viscous force
-      body.set_velocity(i, Vector<3>::Zero());
-    body.set_surface_pressure(p); // from now on: the deformed state is the hydrostatic one
-    body.compute_forces();
-    const double scale = p * 0.005 * 0.005;
-    double       worst = 0;
-    for (unsigned i = 0; i < body.n_particles(); ++i)
-      worst = std::max(worst, (body.internal_forces()[i] + body.pressure_forces()[i]).norm());
-    EXPECT_LT(worst, 1e-3 * scale);
+    // the lattice and the body-fitted cylinder (CTCS's confining pressure on its round surface)
+    for (const Lattice<3> &lat : {make_cylinder<3>(0.05, 0.1, 0.005), make_fitted_cylinder(0.05, 0.1, 0.005)})
+      {
+        Parameters prm;
+        prm.spacing   = 0.005;
+        prm.hourglass = 0;
+        MaterialParameters m;
+        m.model          = RockModel::elastic;
+        m.youngs_modulus = 50e9;
+        m.poissons_ratio = 0.25;
+        Body<3> body(prm, m, lat.positions, lat.volumes);
+        body.add_loaded_face(Vector<3>(0, 0, 1));
+        body.add_loaded_face(Vector<3>(0, 0, -1));
+        const double dt = 1e-6;
+        body.compute_forces();
+        for (unsigned i = 0; i < body.n_particles(); ++i)
+          body.set_velocity(i, (eps / dt) * body.positions()[i]);
+        body.integrate(dt);
+        for (unsigned i = 0; i < body.n_particles(); ++i) // at rest: no viscous force
+          body.set_velocity(i, Vector<3>::Zero());
+        body.set_surface_pressure(p); // from now on: the deformed state is the hydrostatic one
+        body.compute_forces();
+        const double scale = p * 0.005 * 0.005;
+        double       worst = 0;
+        for (unsigned i = 0; i < body.n_particles(); ++i)
+          worst = std::max(worst, (body.internal_forces()[i] + body.pressure_forces()[i]).norm());
+        EXPECT_LT(worst, 1e-3 * scale);
+      }
   }
 } // namespace

@@ -136,6 +136,8 @@ namespace coupling
     RockCase rock_case;              ///< the rock's group, strength source and scatter
     sph::Parameters sph;             ///< SPH numerics (TSSFAC as given; the body takes min(TSSFAC, 1))
     bool loaded_face_correction = true; ///< UCS/CTCS: boundary term lumped on the loaded layer
+    /// UCS/CTCS cylinder, BTS disc: particles on a cubic lattice or body-fitted rings
+    sph::ParticleArrangement particle_arrangement = sph::ParticleArrangement::lattice;
     PlatenParameters platens;
     LoadingParameters loading;
     OutputParameters output;

@@ -15,6 +15,17 @@ namespace sph
     total_lagrangian_corrected   = 8  ///< FORM 8: total Lagrangian, renormalised gradients
   };
 
+  /// How the particles of a laboratory specimen (UCS / CTCS cylinder, BTS disc) are arranged.
+  enum class ParticleArrangement
+  {
+    /// cell centres of a cubic lattice inside the body (sph/lattice.h): flat faces exact, a
+    /// round surface a staircase
+    lattice,
+    /// layers of concentric rings (sph/fitted_bodies.h): the outer ring half a ring spacing
+    /// inside the true round surface at every angle, volumes the annuli's shares
+    body_fitted
+  };
+
   /// Rock constitutive model.
   enum class RockModel
   {

@@ -11,8 +11,9 @@
 namespace sph
 {
   /// One Weibull strength factor (mean 1, modulus `modulus` >= 1) per particle at reference
-  /// positions `x0` on a lattice of spacing `spacing`. Each particle's uniform number is a hash of
-  /// `seed` and its lattice cell, so a particle's factor depends neither on the particle order nor
+  /// positions `x0`. Each particle's uniform number is a hash of `seed` and its cell of a grid of
+  /// edge `spacing` [m] (a lattice's spacing; smaller for sets not on a lattice, so that each
+  /// cell holds one particle), so a particle's factor depends neither on the particle order nor
   /// on the thread count, and the same seed gives the same rock at every run. Throws
   /// std::invalid_argument for modulus < 1 or spacing <= 0.
   template <int dim>

@@ -1,0 +1,126 @@
+// The coupled laboratory tests on body-fitted particles (SPH/Particle arrangement = body-fitted,
+// sph/fitted_bodies.h): the elastic cylinder gives the rock's modulus as the lattice does, and the
+// round disc splits from its centre along the loaded diameter.
+#include "run_helpers.h"
+
+#include <coupling/run_case.h>
+#include <sph/fitted_bodies.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace coupling;
+using namespace coupling::test;
+
+namespace
+{
+  CaseParameters body_fitted(const std::string &test)
+  {
+    CaseParameters p;
+    p.test                  = test;
+    p.particle_arrangement  = sph::ParticleArrangement::body_fitted;
+    p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
+    p.rock.poissons_ratio   = 0.28;
+    p.output.n_history_rows = 200;
+    p.sph.n_threads         = 1; // small runs: one thread costs no more than two (no waits)
+    return p;
+  }
+} // namespace
+
+TEST(CoupledBodyFitted, ElasticUcsGivesTheRockModulus)
+{
+  CaseParameters p     = body_fitted("UCS");
+  p.rock.model         = sph::RockModel::elastic;
+  p.sph.spacing        = 5e-3; // D/10, the coarsest the case files accept (for time)
+  p.loading.end_strain = 1e-3;
+  Keep rows;
+  const Summary s = run_case(p, rows);
+  ASSERT_GT(rows.rows.size(), 50u);
+  // the run is on the rings: their count, not the lattice's
+  EXPECT_EQ(s.n_particles, sph::make_fitted_cylinder(p.diameter, p.length, p.sph.spacing).positions.size());
+  // the secant modulus from the gauges (middle half of the specimen) is E of the closed form
+  // sigma = E eps. 2 %: the requirement; the corrected gradients (FORM 8) are exact for the
+  // uniform field on any particle set, what remains is the explicit loading's dynamics
+  EXPECT_NEAR(s.youngs_modulus / 97.07e9, 1.0, 0.02);
+  // nu from the outer ring at mid-height: 5 % at D/10, where the ring's radial strain is read
+  // from 10 rings (the lattice test asks 3 % at D/20)
+  EXPECT_NEAR(s.poissons_ratio / 0.28, 1.0, 0.05);
+  // energy and the two load cells: the lattice test's bounds (5 %: central differences' shadow
+  // energy and the hourglass and viscous work; 0.1: twice the quasi-static limit)
+  EXPECT_LT(s.energy_balance_error, 0.05);
+  EXPECT_LT(s.max_force_imbalance, 0.1);
+}
+
+namespace
+{
+  /// Keeps the history rows and the last particle snapshot with its time.
+  struct RowsAndLastSnapshot : Keep
+  {
+    double           snapshot_time = 0;
+    ParticleSnapshot particles;
+    void snapshot(double t, const ParticleSnapshot &p, const std::vector<MeshSnapshot> &) override
+    {
+      snapshot_time = t;
+      particles     = p;
+    }
+    /// The mean of the two load cells at time t [N], linear between the rows.
+    double load_at(const double t) const
+    {
+      for (std::size_t k = 1; k < rows.size(); ++k)
+        if (rows[k].time >= t)
+          {
+            const HistoryRow &a = rows[k - 1], &b = rows[k];
+            const double      w = (t - a.time) / (b.time - a.time);
+            return 0.5 * ((1 - w) * (a.force + a.force_bottom) + w * (b.force + b.force_bottom));
+          }
+      return 0.5 * (rows.back().force + rows.back().force_bottom);
+    }
+  };
+} // namespace
+
+TEST(CoupledBodyFitted, ElasticDiscCarriesTheRimLoadAsTheLineLoadSolution)
+{
+  // An elastic disc pressed across a diameter by flat rigid platens. Its round rim touches each
+  // platen along one line (in every layer the ring particle on the loaded diameter), the load
+  // case of the Brazilian test's closed form (plane elasticity, Hondros with a vanishing contact
+  // arc): at the centre sigma_xx = 2P/(pi D t) (tension), sigma_zz = -6P/(pi D t).
+  CaseParameters p        = body_fitted("BTS");
+  p.length                = 0.025; // disc thickness, as cases/bts
+  p.rock.model            = sph::RockModel::elastic;
+  p.sph.spacing           = 4e-3; // D/12.5, coarse for time (at most a sixth of the thickness)
+  p.loading.end_strain    = 5e-4; // d/D
+  p.output.n_snapshots    = 4;
+  RowsAndLastSnapshot run;
+  run_case(p, run);
+  const double P      = run.load_at(run.snapshot_time);
+  const double sigma0 = 2 * P / (3.14159265358979323846 * p.diameter * p.length);
+  ASSERT_GT(sigma0, 1e6) << "the disc must carry load";
+  const ParticleSnapshot &q   = run.particles;
+  const sph::Lattice<3>   set = sph::make_fitted_disc(p.diameter, p.length, p.sph.spacing);
+  ASSERT_EQ(q.n, set.positions.size()); // (one rank: the snapshot is in the set's order)
+  // Equilibrium (the virial of the static body): the loads -P at z = D and +P at z = 0 give
+  // int sigma_zz dV = -P D and int sigma_xx dV = 0, whatever the stress field. 0.90-1.0: the
+  // stress lags the platen force in the loading at the derived rate (measured 0.92 here, 0.95
+  // at 2.5 mm; the lattice disc 0.96 and 0.95); xx: 1 % of P D, measured 5e-4
+  double vzz = 0, vxx = 0;
+  for (std::size_t i = 0; i < q.n; ++i)
+    vzz += set.volumes[i] * q.stress[6 * i + 2], vxx += set.volumes[i] * q.stress[6 * i];
+  EXPECT_GT(vzz / (-P * p.diameter), 0.90);
+  EXPECT_LT(vzz / (-P * p.diameter), 1.0);
+  EXPECT_NEAR(vxx / (P * p.diameter), 0.0, 0.01);
+  // the centre (the particle column on the disc axis): the ratio sigma_xx / sigma_zz is -1/3
+  // for a line load and -(sin 2a - a)/(sin 2a + a) for a load spread over an arc 2a (-0.31 for
+  // the lattice's top flat at 2.5 mm, 2a = 35 deg). 10 %: measured -0.354 here (-0.344 at
+  // 2.5 mm). The magnitude: measured 0.94 of 2P/(pi D t) here and 0.85 at 2.5 mm, below the
+  // virial's 0.92 / 0.95; 0.8-1.05 bounds it
+  const double R = 0.5 * p.diameter;
+  double       sxx = 0, szz = 0, n = 0;
+  for (std::size_t i = 0; i < q.n; ++i)
+    if (std::hypot(set.positions[i][0], set.positions[i][2] - R) < 1e-9)
+      sxx += q.stress[6 * i], szz += q.stress[6 * i + 2], n += 1;
+  ASSERT_GT(n, 0.0);
+  EXPECT_NEAR((sxx / szz) / (-1.0 / 3.0), 1.0, 0.1);
+  EXPECT_GT(sxx / n / sigma0, 0.8);
+  EXPECT_LT(sxx / n / sigma0, 1.05);
+}

@@ -1,0 +1,184 @@
+#include <sph/fitted_bodies.h>
+#include <sph/neighbour_search.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace
+{
+  using namespace sph;
+  constexpr double pi = 3.14159265358979323846;
+
+  double total(const std::vector<double> &v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+
+  /// Distance of each particle to its nearest neighbour [m].
+  std::vector<double> nearest_distances(const std::vector<Vector<3>> &x, const double radius)
+  {
+    PairList pairs;
+    find_pairs<3>(x, radius, pairs);
+    std::vector<double> d(x.size(), radius);
+    for (std::size_t k = 0; k < pairs.n_pairs(); ++k)
+      {
+        const double r = (x[pairs.first[k]] - x[pairs.second[k]]).norm();
+        d[pairs.first[k]]  = std::min(d[pairs.first[k]], r);
+        d[pairs.second[k]] = std::min(d[pairs.second[k]], r);
+      }
+    return d;
+  }
+
+  /// True when the mirror image of every particle in the plane `axis` = 0 (about `centre`) is
+  /// a particle too.
+  bool mirror_symmetric(const std::vector<Vector<3>> &x, const int axis, const double centre, const double tol)
+  {
+    // sorted by the first coordinate: the candidates for a mirror image lie in a window of it
+    std::vector<Vector<3>> sorted = x;
+    std::sort(sorted.begin(), sorted.end(),
+              [](const Vector<3> &a, const Vector<3> &b) { return a[0] < b[0]; });
+    for (const auto &p : x)
+      {
+        Vector<3> m = p;
+        m[axis]     = 2 * centre - p[axis];
+        auto q      = std::lower_bound(sorted.begin(), sorted.end(), m[0] - tol,
+                                  [](const Vector<3> &a, const double v) { return a[0] < v; });
+        bool found  = false;
+        for (; q != sorted.end() && (*q)[0] <= m[0] + tol && !found; ++q)
+          found = (*q - m).norm() < tol;
+        if (!found)
+          return false;
+      }
+    return true;
+  }
+
+  TEST(SphFittedBodies, CylinderVolumeSurfaceAndSpacing)
+  {
+    const double D = 0.05, L = 0.1, dx = 0.0025, R = 0.5 * D;
+    const auto   c = make_fitted_cylinder(D, L, dx);
+    // the annuli of the rings add up to the circle exactly: only round-off may separate the
+    // volumes' sum from pi R^2 L (a staircase lattice is off by the corners before scaling)
+    EXPECT_NEAR(total(c.volumes), pi * R * R * L, 1e-12 * pi * R * R * L);
+    EXPECT_NEAR(c.true_section_area, pi * R * R, 1e-15);
+    const double dr = c.cell_size[0];
+    EXPECT_NEAR(dr, R / (std::lround(R / dx - 0.5) + 0.5), 1e-15);
+    // the outer ring lies half a ring spacing inside the true surface, at every angle
+    double r_max = 0, r_min_outer = R;
+    for (const auto &p : c.positions)
+      r_max = std::max(r_max, std::hypot(p[0], p[1]));
+    for (const auto &p : c.positions)
+      if (std::hypot(p[0], p[1]) > r_max - 0.25 * dr)
+        r_min_outer = std::min(r_min_outer, std::hypot(p[0], p[1]));
+    EXPECT_NEAR(r_max, R - 0.5 * dr, 1e-12);
+    EXPECT_NEAR(r_min_outer, R - 0.5 * dr, 1e-12) << "the outer layer is a circle, not a staircase";
+    // near-uniform spacing: every particle's nearest neighbour between 0.9 and 1.1 dx (ring k
+    // holds 2 round(pi k) particles, so its arc spacing is within 1/(2k) of dr, 1.05 dr for the
+    // first; radial spacing dr = R/(n + 1/2) and axial L/round(L/dx) are within 2 % of dx here)
+    const auto d = nearest_distances(c.positions, 2 * dx);
+    EXPECT_GT(*std::min_element(d.begin(), d.end()), 0.9 * dx);
+    EXPECT_LT(*std::max_element(d.begin(), d.end()), 1.1 * dx);
+    // particle volumes near-uniform: the centre particle has pi/4 of a ring particle's area
+    const double v_ref = dr * dr * c.cell_size[2];
+    for (const double v : c.volumes)
+      {
+        EXPECT_GT(v, 0.75 * v_ref);
+        EXPECT_LT(v, 1.2 * v_ref);
+      }
+    EXPECT_TRUE(mirror_symmetric(c.positions, 0, 0.0, 1e-9 * dx));
+    EXPECT_TRUE(mirror_symmetric(c.positions, 1, 0.0, 1e-9 * dx));
+  }
+
+  TEST(SphFittedBodies, DiscIsRoundAndSymmetricAboutTheLoadedDiameter)
+  {
+    const double D = 0.05, t = 0.025, R = 0.5 * D;
+    for (const double dx : {0.0025, 0.00125})
+      {
+        const auto   b  = make_fitted_disc(D, t, dx);
+        const double dr = b.cell_size[0];
+        EXPECT_NEAR(total(b.volumes), pi * R * R * t, 1e-12 * pi * R * R * t);
+        double top = 0, bottom = D, r_max = 0;
+        for (const auto &p : b.positions)
+          {
+            r_max = std::max(r_max, std::hypot(p[0], p[2] - R));
+            if (std::abs(p[0]) < 1e-12)
+              top = std::max(top, p[2]), bottom = std::min(bottom, p[2]);
+          }
+        // a particle of the outer ring sits on the loaded diameter at the top and the bottom,
+        // half a ring spacing inside the surface: the platens touch the round disc there
+        EXPECT_NEAR(r_max, R - 0.5 * dr, 1e-12);
+        EXPECT_NEAR(top, D - 0.5 * dr, 1e-12);
+        EXPECT_NEAR(bottom, 0.5 * dr, 1e-12);
+        // symmetric about the splitting plane x = 0 and the mid-plane z = R: the split has no
+        // side to prefer
+        EXPECT_TRUE(mirror_symmetric(b.positions, 0, 0.0, 1e-9 * dx));
+        EXPECT_TRUE(mirror_symmetric(b.positions, 2, R, 1e-9 * dx));
+        const auto d = nearest_distances(b.positions, 2 * dx);
+        EXPECT_GT(*std::min_element(d.begin(), d.end()), 0.9 * dx);
+        EXPECT_LT(*std::max_element(d.begin(), d.end()), 1.1 * dx);
+      }
+  }
+
+  TEST(SphFittedBodies, SpacingIsNearUniformAtEveryAcceptedResolution)
+  {
+    // diameters from the coarsest the case files accept (10 spacings, dx <= D/10) to 30 spacings
+    // in steps of half a spacing, so that R/dx - 1/2 meets every rounding edge of the ring count
+    // (D/dx = 2k + 2, where dr = R/(n + 1/2) is farthest from dx): every particle's nearest
+    // neighbour within 15 % of dx (measured: 0.877 to 1.030 dx). Bounds: dr within 1/(2n + 1)
+    // <= 11 % of dx for n >= 4 rings, the arc spacing 2 pi k dr / (2 round(pi k)) within 5 % of
+    // dr, the layer distance within 5 % of dx for >= 10 layers
+    const double dx = 1e-3;
+    double       lo = 1e300, hi = 0;
+    for (double n = 10.0; n <= 30.0 + 1e-9; n += 0.5)
+      {
+        const double D = n * dx, t = 10.3 * dx; // 10.3: layers 3 % off dx
+        for (const auto &body : {make_fitted_cylinder(D, t, dx), make_fitted_disc(D, t, dx)})
+          {
+            const auto d = nearest_distances(body.positions, 2 * dx);
+            lo           = std::min(lo, *std::min_element(d.begin(), d.end()));
+            hi           = std::max(hi, *std::max_element(d.begin(), d.end()));
+          }
+      }
+    EXPECT_GT(lo, 0.85 * dx);
+    EXPECT_LT(hi, 1.15 * dx);
+  }
+
+  TEST(SphFittedBodies, VolumesAreTheTrueBodyAtAnySpacing)
+  {
+    // the annuli's areas are pi ((k + 1/2)^2 - (k - 1/2)^2) dr^2 and the centre's pi dr^2 / 4:
+    // they sum to pi (n + 1/2)^2 dr^2 = pi R^2 exactly, so the volumes before scaling are the
+    // true volume to round-off; 1e-3 is the requirement, 1e-12 what exact arithmetic leaves
+    for (const double dx : {0.0025, 0.0021, 0.00125})
+      {
+        const double D = 0.05, L = 0.1, t = 0.025, R = 0.5 * D;
+        const auto   c = make_fitted_cylinder(D, L, dx);
+        const auto   b = make_fitted_disc(D, t, dx);
+        EXPECT_NEAR(total(c.volumes) / (pi * R * R * L), 1.0, 1e-12);
+        EXPECT_NEAR(total(b.volumes) / (pi * R * R * t), 1.0, 1e-12);
+        // and each layer's rings fill the true circle: the cylinder's end layer holds pi R^2 dz
+        const double dz = c.cell_size[2];
+        double       end_layer = 0;
+        for (std::size_t i = 0; i < c.positions.size(); ++i)
+          if (c.positions[i][2] < dz)
+            end_layer += c.volumes[i];
+        EXPECT_NEAR(end_layer / (pi * R * R * dz), 1.0, 1e-12);
+        // the outer particles lie half a ring spacing inside r = R (to round-off of R), the
+        // contact radius of the driver: their contact surface is the true round surface
+        double r_max = 0;
+        for (const auto &p : c.positions)
+          r_max = std::max(r_max, std::hypot(p[0], p[1]));
+        EXPECT_NEAR(r_max + 0.5 * c.cell_size[0], R, 1e-12 * R);
+        // the cylinder's end layers are flat, at half a layer from the true end faces
+        double z_lo = L, z_hi = 0;
+        for (const auto &p : c.positions)
+          z_lo = std::min(z_lo, p[2]), z_hi = std::max(z_hi, p[2]);
+        EXPECT_NEAR(z_lo, 0.5 * dz, 1e-12 * L);
+        EXPECT_NEAR(z_hi, L - 0.5 * dz, 1e-12 * L);
+      }
+  }
+
+  TEST(SphFittedBodies, RejectsBadSizes)
+  {
+    EXPECT_THROW(make_fitted_cylinder(0.05, 0.1, -1e-3), std::invalid_argument);
+    EXPECT_THROW(make_fitted_disc(0.05, std::nan(""), 1e-3), std::invalid_argument);
+  }
+} // namespace
