@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Helpers shared by the two drivers (SpecimenDriver, CuttingDriver): the solver state as output
-/// snapshots and an FEM body's contact face as the surface PenaltyContact sees. Internal to the
-/// coupling library.
+/// snapshots and an FEM body's contact face as the surface PenaltyContact sees; on more than one
+/// MPI rank, a rank's part of the rock, its owned particles packed for the contact and its share
+/// of checkpoints. Internal to the coupling library.
 
 #include <coupling/case_parameters.h>
 #include <coupling/contact.h>
