@@ -201,11 +201,11 @@ namespace
     "Output/Snapshots=2",         "Rock/Residual friction angle="};
 
   /// A rigid 30 mm disc, 6 mm deep, 25 mm across a 33 x 30 x 30 mm block at 3 mm spacing (1,100
-  /// particles; the shortest cut and block the checks allow for this disc) at 64 m/s (910 steps;
-  /// the split is tested, not the physics): rock fails from about step 200 on and leaves the
+  /// particles; the shortest cut and block the checks allow for this disc) at 96 m/s (607 steps;
+  /// the split is tested, not the physics): rock fails from about step 150 on and leaves the
   /// contact as chip.
   const std::vector<std::string> small_cut = {
-    "SPH/Particle spacing=0.003", "Cutter/Speed=64", "Cutter/Disc diameter=0.03", "Cutter/Tip width=0.006",
+    "SPH/Particle spacing=0.003", "Cutter/Speed=96", "Cutter/Disc diameter=0.03", "Cutter/Tip width=0.006",
     "Cutter/Penetration=0.006",   "Cutter/Cut length=0.025",   "Cutter/Block length=0.033",
     "Cutter/Block width=0.03",    "Cutter/Block height=0.03",  "Output/History rows=40",
     "Output/Snapshots=2"};
@@ -281,9 +281,9 @@ TEST(MpiRun, LinearCutOnOneToFourRanksAndAfterARestartGivesTheSerialHistoryAndCh
                                                 small_cut, {1, 2, 3, 4});
   EXPECT_GT(s["n_chip_particles_released"].get<double>(), 0.0)
     << "the cut must release chip, or the chip flags are not tested across ranks";
-  // stopped on 2 ranks at step 400, with chip released (the chip flags and the contact forces
+  // stopped on 2 ranks at step 300, with chip released (the chip flags and the contact forces
   // they read are then part of the checkpoint), continued on 3
-  expect_restart_on_three(box, "cases/linear-cutting/linear-cutting.prm", small_cut, 400);
+  expect_restart_on_three(box, "cases/linear-cutting/linear-cutting.prm", small_cut, 300);
 }
 
 TEST(MpiRun, EveryRankRefusesAlike)
