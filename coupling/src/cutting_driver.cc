@@ -132,7 +132,8 @@ namespace coupling
       ++n_fixed_;
     }
     if (domain_) // counted over the whole block
-      n_fixed_ = static_cast<std::size_t>(std::count_if(x0_global_.begin(), x0_global_.end(), held));
+      n_fixed_ =
+        static_cast<std::size_t>(std::count_if(x0_global_.begin(), x0_global_.end(), held));
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     force_on_particles_.assign(3 * n_contact, 0.0);
     released_.assign(n_contact, 0);
@@ -264,8 +265,8 @@ namespace coupling
     const double dt_fem = cutter_->stable_time_step();
     n_substeps_         = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
     const auto &m           = body_->masses();
-    const double m_particle = domain_ ? domain_->min(*std::min_element(m.begin(), m.end())) :
-                                        *std::min_element(m.begin(), m.end());
+    const double m_particle = domain_ ? domain_->min(*std::min_element(m.begin(), m.end()))
+                                      : *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
     if (!cutter_->is_rigid())
     {
@@ -383,12 +384,12 @@ namespace coupling
 
   HistoryRow CuttingDriver::history_row(sph::Energies &e)
   {
-    e                            = body_->energies();
-    double support_impulse_z     = support_impulse_z_;
-    double penalty               = contact_->penalty_energy();
-    double friction              = contact_->friction_dissipation();
-    double released_energy       = released_energy_;
-    double n_failed              = 0;
+    e                        = body_->energies();
+    double support_impulse_z = support_impulse_z_;
+    double penalty           = contact_->penalty_energy();
+    double friction          = contact_->friction_dissipation();
+    double released_energy   = released_energy_;
+    double n_failed          = 0;
     if (domain_) // the owned particles' shares of every rank (one collective)
     {
       for (const std::int32_t i : domain_->owned_indices())
@@ -421,9 +422,10 @@ namespace coupling
 
     r.kinetic_energy      = e.kinetic + cutter_->kinetic_energy();
     r.internal_energy     = e.internal + cutter_->strain_energy() + penalty;
-    r.dissipated_energy = e.dissipated() + friction + cutter_->damping_dissipation() + released_energy;
+    r.dissipated_energy =
+      e.dissipated() + friction + cutter_->damping_dissipation() + released_energy;
     r.external_work = frame_work_;
-    r.n_failed = n_failed;
+    r.n_failed      = n_failed;
     return r;
   }
 
@@ -586,7 +588,8 @@ namespace coupling
     x.push_back({"n_cutter_nodes", double(cutter_->n_nodes())});
     x.push_back({"n_contact_particles", n_contact}); // at the end
     x.push_back({"contact_stiffness_N_m", contact_stiffness_});
-    x.push_back({"n_sph_pairs", double(domain_ ? n_global_pairs_ : body_->n_pairs())}); // at the end (tools/bench)
+    x.push_back({"n_sph_pairs",
+                 double(domain_ ? n_global_pairs_ : body_->n_pairs())}); // at the end (tools/bench)
 
     // independent estimates (closed forms) for the same geometry and rock
     const sph::MaterialParameters &rock = prm_.rock;

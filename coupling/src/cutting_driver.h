@@ -3,14 +3,15 @@
 /// Cutter-rock interaction: an FEM cutter (wedge, cone or flat indenter; CCS disc cutter), rigid or
 /// elastic steel, pressed into (indentation) or drawn across (linear cutting) an SPH rock block
 /// whose bottom and sides are held. Penalty contact with Coulomb friction, sub-cycling and the
-/// energy account as in the laboratory driver (specimen_driver.h). Internal to the coupling library;
-/// run_case() (run_case.cc) is the public entry.
+/// energy account as in the laboratory driver (specimen_driver.h). Internal to the coupling
+/// library; run_case() (run_case.cc) is the public entry.
 ///
 /// Frame: the block fills [0, L] x [-W/2, W/2] x [-H, 0]; its free top face is z = 0. The cutter
 /// indenter tip starts on that face and moves down (-z) to the penetration; a disc cutter starts
-/// outside the free entry face x = 0 with its tip at the penetration depth and moves along +x. The disc slides without rotating: with frictionless contact (the default) a
-/// freely rolling disc and a sliding one take the same traction from the rock, as a free disc
-/// carries no moment about its axle; with friction the sliding disc over-states the rolling force.
+/// outside the free entry face x = 0 with its tip at the penetration depth and moves along +x. The
+/// disc slides without rotating: with frictionless contact (the default) a freely rolling disc and
+/// a sliding one take the same traction from the rock, as a free disc carries no moment about its
+/// axle; with friction the sliding disc over-states the rolling force.
 ///
 /// On more than one MPI rank the block is split as the laboratory driver splits its specimen
 /// (make_rock_part): each rank's contact, chip release and sums take its owned particles, the

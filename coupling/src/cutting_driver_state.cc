@@ -36,24 +36,25 @@ namespace coupling
                                 static_cast<double>(n_released_), released_energy_};
     if (domain_)
       mine = domain_->sum(mine);
-    out["driver.scalars"] = {time_,
-                             static_cast<double>(n_steps_),
-                             frame_work_,
-                             dt_,
-                             static_cast<double>(n_substeps_),
-                             static_cast<double>(domain_ ? domain_->n_global() : body_->n_particles()),
-                             travel_,
-                             depth_,
-                             impulse_[0],
-                             impulse_[1],
-                             impulse_[2],
-                             mine[0],
-                             impulse_time_,
-                             mine[1],
-                             mine[2],
-                             mine[3]};
+    out["driver.scalars"] = {
+      time_,
+      static_cast<double>(n_steps_),
+      frame_work_,
+      dt_,
+      static_cast<double>(n_substeps_),
+      static_cast<double>(domain_ ? domain_->n_global() : body_->n_particles()),
+      travel_,
+      depth_,
+      impulse_[0],
+      impulse_[1],
+      impulse_[2],
+      mine[0],
+      impulse_time_,
+      mine[1],
+      mine[2],
+      mine[3]};
     const std::vector<double> released(released_.begin(), released_.end());
-    out["driver.released"]      = domain_ ? domain_->gather_owned(released.data(), 1) : released;
+    out["driver.released"] = domain_ ? domain_->gather_owned(released.data(), 1) : released;
     out["driver.contact_force"] =
       domain_ ? domain_->gather_owned(force_on_particles_.data(), 3) : force_on_particles_;
   }
@@ -78,8 +79,7 @@ namespace coupling
     {
       std::ostringstream os;
       os << "checkpoint: it holds " << d[5] << " particles at dt = " << d[3] << " s, this case has "
-         << n_all << " at dt = " << dt_
-         << " s; restart with the case's own used_parameters.prm";
+         << n_all << " at dt = " << dt_ << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
     }
     const auto &all_released = find("driver.released"), &all_force = find("driver.contact_force");
@@ -87,9 +87,10 @@ namespace coupling
       throw InputError(
         "checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
     // distributed: the owned particles' rows, the accounts of all ranks on rank 0
-    const std::vector<double> released = domain_ ? owned_rows(*domain_, all_released, 1) : all_released;
+    const std::vector<double> released =
+      domain_ ? owned_rows(*domain_, all_released, 1) : all_released;
     const std::vector<double> force = domain_ ? owned_rows(*domain_, all_force, 3) : all_force;
-    const double share = domain_ && domain_->rank() != 0 ? 0.0 : 1.0;
+    const double share              = domain_ && domain_->rank() != 0 ? 0.0 : 1.0;
     try
     {
       load_rock_state(*body_, domain_.get(), {{"contact.", contact_.get()}}, in);
@@ -105,11 +106,11 @@ namespace coupling
     travel_            = d[6];
     depth_             = d[7];
     impulse_           = {{d[8], d[9], d[10]}};
-    support_impulse_z_ = share * d[11];
+    support_impulse_z_  = share * d[11];
     impulse_time_      = d[12];
-    n_in_contact_      = static_cast<std::size_t>(share * d[13]);
-    n_released_        = static_cast<std::size_t>(share * d[14]);
-    released_energy_   = share * d[15];
+    n_in_contact_       = static_cast<std::size_t>(share * d[13]);
+    n_released_         = static_cast<std::size_t>(share * d[14]);
+    released_energy_    = share * d[15];
     force_on_particles_ = force;
     // the chip: released particles stay out of the contact (their stiffness factor 0)
     bool any = false;

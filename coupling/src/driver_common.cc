@@ -39,11 +39,11 @@ namespace coupling
     MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     const std::vector<int> owners = sph::bisection_owners<3>(lattice.positions, n_ranks);
-    const double radius = 2.0 * (p.sph.cslh * p.sph.spacing); // sph::Body's pair cut-off
-    part.domain = std::make_unique<sph::Domain>(
+    const double radius           = 2.0 * (p.sph.cslh * p.sph.spacing); // sph::Body's pair cut-off
+    part.domain                   = std::make_unique<sph::Domain>(
       MPI_COMM_WORLD, owners, sph::local_particles<3>(lattice.positions, owners, rank, radius, 3));
     const sph::Domain &domain = *part.domain;
-    sph::Lattice<3> mine = lattice;
+    sph::Lattice<3> mine      = lattice;
     mine.positions.clear();
     mine.volumes.clear();
     for (const std::int32_t g : domain.global_ids())
@@ -51,7 +51,7 @@ namespace coupling
       mine.positions.push_back(lattice.positions[g]);
       mine.volumes.push_back(lattice.volumes[g]);
     }
-    part.body = make_rock_body(p, mine, strain_rate);
+    part.body          = make_rock_body(p, mine, strain_rate);
     sph::Body<3> &body = *part.body;
     body.set_owned(domain.owned());
     {
@@ -72,12 +72,13 @@ namespace coupling
     std::vector<std::int64_t> pair_begin(all.size() + 1, 0);
     for (std::size_t i = 0; i < all.size(); ++i)
       pair_begin[i + 1] = pair_begin[i] + static_cast<std::int64_t>(all[i]);
-    part.n_global_pairs = static_cast<std::size_t>(pair_begin.back());
+    part.n_global_pairs                    = static_cast<std::size_t>(pair_begin.back());
     const std::vector<std::int32_t> starts = sph::Body<3>::work_chunks(pair_begin, p.sph.chunks);
     std::vector<std::int32_t> chunk_of;
     for (const std::int32_t g : domain.global_ids())
-      chunk_of.push_back(
-        static_cast<std::int32_t>(std::upper_bound(starts.begin(), starts.end(), g) - starts.begin()) - 1);
+      chunk_of.push_back(static_cast<std::int32_t>(
+                           std::upper_bound(starts.begin(), starts.end(), g) - starts.begin()) -
+                         1);
     body.set_chunks(chunk_of);
     return part;
   }
@@ -198,10 +199,10 @@ namespace coupling
       if (rank_share(name) || ends_with(name, ".scalars"))
         out[name] = domain->sum(a);
       else if (starts_with(name, "body."))
-        out[name] = a.size() >= n_local && a.size() % n_local == 0 ?
-                      domain->gather(a.data(), static_cast<int>(a.size() / n_local)) :
-                      a; // pressure, dt_last: the same on every rank
-      else // the contacts' arrays of the owned particles
+        out[name] = a.size() >= n_local && a.size() % n_local == 0
+                      ? domain->gather(a.data(), static_cast<int>(a.size() / n_local))
+                      : a; // pressure, dt_last: the same on every rank
+      else                 // the contacts' arrays of the owned particles
         out[name] = domain->gather_owned(a.data(), ends_with(name, "tangential_force") ? 3 : 1);
     }
   }
@@ -237,9 +238,9 @@ namespace coupling
         local[name] = std::move(b);
       }
       else if (starts_with(name, "body."))
-        local[name] = a.size() >= n_all && a.size() % n_all == 0 ?
-                        domain->scatter(a, static_cast<int>(a.size() / n_all)) :
-                        a;
+        local[name] = a.size() >= n_all && a.size() % n_all == 0
+                        ? domain->scatter(a, static_cast<int>(a.size() / n_all))
+                        : a;
       else if (of_contact(name))
         local[name] = owned_rows(*domain, a, a.size() / n_all);
     }

@@ -715,9 +715,9 @@ namespace coupling
 
   void SpecimenDriver::save_state(StateArrays &out) const
   {
-    save_rock_state(*body_, domain_.get(),
-                    {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}},
-                    out);
+    save_rock_state(
+      *body_, domain_.get(),
+      {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, out);
     top_->save_state(out, "platen_top.");
     bottom_->save_state(out, "platen_bottom.");
     out["driver.scalars"] = {time_,
@@ -756,9 +756,9 @@ namespace coupling
     }
     try
     {
-      load_rock_state(*body_, domain_.get(),
-                      {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}},
-                      in);
+      load_rock_state(
+        *body_, domain_.get(),
+        {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, in);
       top_->load_state(in, "platen_top.");
       bottom_->load_state(in, "platen_bottom.");
     }

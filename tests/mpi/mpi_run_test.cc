@@ -130,11 +130,11 @@ namespace
   std::vector<std::string> small_case(const std::string &case_file, const std::string &folder,
                                       std::vector<std::string> extra = {})
   {
-    const bool spacing = std::any_of(extra.begin(), extra.end(), [](const std::string &e) {
+    const bool spacing         = std::any_of(extra.begin(), extra.end(), [](const std::string &e) {
       return e.rfind("SPH/Particle spacing=", 0) == 0;
     });
-    std::vector<std::string> a = {"run", source(case_file), "-o", folder, "--quiet",
-                                  "--set", "SPH/Threads=1"};
+    std::vector<std::string> a = {"run",     source(case_file), "-o",           folder,
+                                  "--quiet", "--set",           "SPH/Threads=1"};
     if (!spacing)
       a.insert(a.end(), {"--set", "SPH/Particle spacing=0.005"});
     for (const auto &e : extra)
@@ -194,21 +194,27 @@ namespace
   /// the intact friction angle after failure, as tests/app/cutting_restart_test.cc runs it, but
   /// at 32 m/s (373 steps): a test of the split, not of the physics; particles fail under the
   /// tip.
-  const std::vector<std::string> small_indentation = {
-    "SPH/Particle spacing=0.003", "Cutter/Tip radius=0",       "SPH/TSSFAC=0.9",
-    "Cutter/Penetration=0.006",   "Cutter/Speed=32",           "Cutter/Block length=0.03",
-    "Cutter/Block width=0.03",    "Cutter/Block height=0.03",  "Output/History rows=40",
-    "Output/Snapshots=2",         "Rock/Residual friction angle="};
+  const std::vector<std::string> small_indentation = {"SPH/Particle spacing=0.003",
+                                                      "Cutter/Tip radius=0",
+                                                      "SPH/TSSFAC=0.9",
+                                                      "Cutter/Penetration=0.006",
+                                                      "Cutter/Speed=32",
+                                                      "Cutter/Block length=0.03",
+                                                      "Cutter/Block width=0.03",
+                                                      "Cutter/Block height=0.03",
+                                                      "Output/History rows=40",
+                                                      "Output/Snapshots=2",
+                                                      "Rock/Residual friction angle="};
 
   /// A rigid 30 mm disc, 6 mm deep, 25 mm across a 33 x 30 x 30 mm block at 3 mm spacing (1,100
   /// particles; the shortest cut and block the checks allow for this disc) at 96 m/s (607 steps;
   /// the split is tested, not the physics): rock fails from about step 150 on and leaves the
   /// contact as chip.
   const std::vector<std::string> small_cut = {
-    "SPH/Particle spacing=0.003", "Cutter/Speed=96", "Cutter/Disc diameter=0.03", "Cutter/Tip width=0.006",
-    "Cutter/Penetration=0.006",   "Cutter/Cut length=0.025",   "Cutter/Block length=0.033",
-    "Cutter/Block width=0.03",    "Cutter/Block height=0.03",  "Output/History rows=40",
-    "Output/Snapshots=2"};
+    "SPH/Particle spacing=0.003", "Cutter/Speed=96",          "Cutter/Disc diameter=0.03",
+    "Cutter/Tip width=0.006",     "Cutter/Penetration=0.006", "Cutter/Cut length=0.025",
+    "Cutter/Block length=0.033",  "Cutter/Block width=0.03",  "Cutter/Block height=0.03",
+    "Output/History rows=40",     "Output/Snapshots=2"};
 } // namespace
 
 TEST(MpiRun, UcsOnOneToFourRanksGivesTheSerialHistory)
@@ -234,12 +240,11 @@ TEST(MpiRun, CtcsOnTwoAndThreeRanksGivesTheSerialHistory)
 
 TEST(MpiRun, IndentationOnOneToFourRanksGivesTheSerialHistory)
 {
-  Sandbox              box;
-  const nlohmann::json s = expect_serial_result(box, "cases/indentation/indentation.prm",
-                                                small_indentation, {1, 2, 3, 4});
+  Sandbox box;
+  const nlohmann::json s =
+    expect_serial_result(box, "cases/indentation/indentation.prm", small_indentation, {1, 2, 3, 4});
   EXPECT_GT(s["peak_normal_force_kN"].get<double>(), 0.0);
 }
-
 
 namespace
 {
@@ -276,9 +281,9 @@ TEST(MpiRun, CheckpointOfTwoRanksContinuesOnThree)
 
 TEST(MpiRun, LinearCutOnOneToFourRanksAndAfterARestartGivesTheSerialHistoryAndChip)
 {
-  Sandbox              box;
-  const nlohmann::json s = expect_serial_result(box, "cases/linear-cutting/linear-cutting.prm",
-                                                small_cut, {1, 2, 3, 4});
+  Sandbox box;
+  const nlohmann::json s =
+    expect_serial_result(box, "cases/linear-cutting/linear-cutting.prm", small_cut, {1, 2, 3, 4});
   EXPECT_GT(s["n_chip_particles_released"].get<double>(), 0.0)
     << "the cut must release chip, or the chip flags are not tested across ranks";
   // stopped on 2 ranks at step 300, with chip released (the chip flags and the contact forces
