@@ -8,6 +8,7 @@
 
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/domain.h>
 #include <sph/lattice.h>
 
 #include <algorithm>
@@ -99,26 +100,46 @@ namespace coupling
     const sph::Vector<3> lower(0.0, -0.5 * c.block_width, -c.block_height);
     const sph::Vector<3> upper(c.block_length, 0.5 * c.block_width, 0.0);
     const sph::Lattice<3> lattice = sph::make_block<3>(lower, upper, dx);
-    body_ = make_rock_body(prm_, lattice);
-    volume0_ = lattice.volumes;
+    x0_global_                    = lattice.positions;
+    if (mpi_ranks() > 1)
+    {
+      // this rank's part of the block (make_rock_part)
+      RockPart part   = make_rock_part(prm_, lattice);
+      domain_         = std::move(part.domain);
+      body_           = std::move(part.body);
+      n_global_pairs_ = part.n_global_pairs;
+      owned_.reset(*body_, *domain_);
+      for (const std::int32_t g : domain_->global_ids())
+        volume0_.push_back(lattice.volumes[g]);
+    }
+    else
+    {
+      body_    = make_rock_body(prm_, lattice);
+      volume0_ = lattice.volumes;
+    }
     contact_radius_ = 0.5 * lattice.cell_size[2];
     // held: the bottom layer and the outermost layer of each side (x and y), all components (a
     // block clamped in the rig); the top face is free, and so is the entry face x = 0 of a cut
+    auto held = [&](const sph::Vector<3> &p) {
+      const bool entry = !cutting_ && p[0] < lower[0] + dx;
+      return p[2] < lower[2] + dx || entry || p[0] > upper[0] - dx || p[1] < lower[1] + dx ||
+             p[1] > upper[1] - dx;
+    };
     const auto &x0 = body_->reference_positions();
     for (unsigned int i = 0; i < body_->n_particles(); ++i)
     {
-      const auto &p    = x0[i];
-      const bool entry = !cutting_ && p[0] < lower[0] + dx;
-      const bool fixed = p[2] < lower[2] + dx || entry || p[0] > upper[0] - dx ||
-                         p[1] < lower[1] + dx || p[1] > upper[1] - dx;
-      if (!fixed)
+      if (!held(x0[i]))
         continue;
       for (unsigned int d = 0; d < 3; ++d)
         body_->constrain(i, d, 0.0);
       ++n_fixed_;
     }
-    force_on_particles_.assign(3 * body_->n_particles(), 0.0);
-    released_.assign(body_->n_particles(), 0);
+    if (domain_) // counted over the whole block
+      n_fixed_ =
+        static_cast<std::size_t>(std::count_if(x0_global_.begin(), x0_global_.end(), held));
+    const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
+    force_on_particles_.assign(3 * n_contact, 0.0);
+    released_.assign(n_contact, 0);
     domain_size_ = 3.0 * std::max({c.block_length, c.block_width, c.block_height});
   }
 
@@ -201,7 +222,7 @@ namespace coupling
       // lateral distance from the tip: the tip starts there instead of at z = 0 (no contact yet)
       const double r = contact_radius_, a = g.tip_half_angle;
       double rho_min = std::numeric_limits<double>::max();
-      for (const auto &p : body_->reference_positions())
+      for (const auto &p : x0_global_)
         if (p[2] > -dx)
           rho_min = std::min(rho_min, c.shape == "cone" ? std::hypot(p[0] - g.center_x, p[1])
                                                         : std::abs(p[0] - g.center_x));
@@ -240,12 +261,15 @@ namespace coupling
     // penalty stiffness and time step as in the laboratory driver: a fraction s of the
     // central-difference bound at the rock's own step, the step shortened to count the contact
     time_step_scale_    = prm_.sph.tssfac / std::min(prm_.sph.tssfac, 1.0);
-    const double dt_sph = body_->stable_time_step() * time_step_scale_;
+    const double dt_sph =
+      (domain_ ? domain_->min(body_->stable_time_step()) : body_->stable_time_step()) *
+      time_step_scale_;
     dt_                 = coupled_time_step(dt_sph, prm_.platens.contact_stiffness_scale);
     const double dt_fem = cutter_->stable_time_step();
     n_substeps_         = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
     const auto &m           = body_->masses();
-    const double m_particle = *std::min_element(m.begin(), m.end());
+    const double m_particle = domain_ ? domain_->min(*std::min_element(m.begin(), m.end()))
+                                      : *std::min_element(m.begin(), m.end());
     double m_node           = 0.0;
     if (!cutter_->is_rigid())
     {
@@ -261,15 +285,17 @@ namespace coupling
     cp.radius                                = contact_radius_;
     // every cutter is convex towards the rock (flat punch: flat, where both rules agree)
     cp.convex_master = true;
-    contact_         = std::make_unique<PenaltyContact>(cp, body_->n_particles());
+    contact_         = std::make_unique<PenaltyContact>(cp, released_.size());
   }
 
   void CuttingDriver::release_failed_particles()
   {
+    // k: the contact's particle (distributed: the k-th owned one), i: the body's
     bool changed = false;
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
+    for (std::size_t k = 0; k < released_.size(); ++k)
     {
-      if (released_[i] || body_->damage(i) < 1.0)
+      const unsigned int i = domain_ ? domain_->owned_indices()[k] : static_cast<unsigned int>(k);
+      if (released_[k] || body_->damage(i) < 1.0)
         continue;
       // crushed but confined rock (mean stress compressive) still carries the cutter, as the
       // crushed zone of the CSM model does; a failed particle that is no longer compressed has
@@ -277,21 +303,25 @@ namespace coupling
       const auto &sig = body_->stress3(i);
       if ((sig(0, 0) + sig(1, 1) + sig(2, 2)) / 3.0 < 0.0)
         continue;
-      released_[i] = 1;
+      released_[k] = 1;
       changed      = true;
       ++n_released_;
       // force_on_particles_ still holds this particle's contact force of the last step: its
       // penalty (and stick-spring) energy |f|^2 / (2 k) leaves with the chip
       double f2 = 0;
       for (int d = 0; d < 3; ++d)
-        f2 += force_on_particles_[3 * i + d] * force_on_particles_[3 * i + d];
+        f2 += force_on_particles_[3 * k + d] * force_on_particles_[3 * k + d];
       released_energy_ += 0.5 * f2 / contact_stiffness_;
     }
-    if (!changed)
-      return;
+    if (changed)
+      exclude_released();
+  }
+
+  void CuttingDriver::exclude_released()
+  {
     std::vector<double> factor(released_.size());
-    for (std::size_t i = 0; i < factor.size(); ++i)
-      factor[i] = released_[i] ? 0.0 : 1.0;
+    for (std::size_t k = 0; k < factor.size(); ++k)
+      factor[k] = released_[k] ? 0.0 : 1.0;
     contact_->set_stiffness_factors(std::move(factor));
   }
 
@@ -302,28 +332,37 @@ namespace coupling
 
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
-    const ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
-                                     body_->n_particles()};
+    ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
+                               body_->n_particles()};
+    if (domain_) // the owned particles only, packed
+      particles = owned_.pack(*body_, *domain_);
     if (cutting_)
       release_failed_particles();
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_cutter_.begin(), force_on_cutter_.end(), 0.0);
     n_in_contact_ = contact_->apply(particles, s, dt_, force_on_particles_, force_on_cutter_);
+    // distributed: the cutter's nodal forces of all ranks, summed in rank order (one collective),
+    // so that every rank steps the same cutter
+    if (domain_)
+      force_on_cutter_ = domain_->sum(force_on_cutter_);
 
-    auto &f_ext = body_->external_forces();
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      for (int d = 0; d < 3; ++d)
-        f_ext[i][d] += force_on_particles_[3 * i + d];
+    add_contact_forces(*body_, domain_.get(), force_on_particles_);
     body_->integrate(dt_);
+    if (domain_) // the ghosts' positions and velocities from their owners
+      body_->exchange_ghosts(*domain_);
 
     // the contact force on the cutter (what a three-axis load cell on its axle reads, less the
     // cutter's inertia) and the supports' force on the block, integrated over the step
     std::array<double, 3> f_cutter{{0, 0, 0}};
     for (std::size_t k = 0; k < force_on_cutter_.size(); ++k)
       f_cutter[k % 3] += force_on_cutter_[k];
-    double support_z = 0;
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      support_z += body_->reaction_force(i)[2];
+    double support_z = 0; // (distributed: of the owned particles; summed per row)
+    if (domain_)
+      for (const std::int32_t i : domain_->owned_indices())
+        support_z += body_->reaction_force(i)[2];
+    else
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        support_z += body_->reaction_force(i)[2];
     for (int d = 0; d < 3; ++d)
       impulse_[d] += f_cutter[d] * dt_;
     support_impulse_z_ += support_z * dt_;
@@ -346,8 +385,28 @@ namespace coupling
     ++n_steps_;
   }
 
-  HistoryRow CuttingDriver::history_row()
+  HistoryRow CuttingDriver::history_row(sph::Energies &e)
   {
+    e                        = body_->energies();
+    double support_impulse_z = support_impulse_z_;
+    double penalty           = contact_->penalty_energy();
+    double friction          = contact_->friction_dissipation();
+    double released_energy   = released_energy_;
+    double n_failed          = 0;
+    if (domain_) // the owned particles' shares of every rank (one collective)
+    {
+      for (const std::int32_t i : domain_->owned_indices())
+        n_failed += body_->damage(i) >= 1.0 ? 1.0 : 0.0;
+      const std::vector<double> all =
+        domain_->sum({support_impulse_z, e.kinetic, e.internal, e.plastic, e.viscous, e.hourglass,
+                      e.external, penalty, friction, released_energy, n_failed});
+      support_impulse_z = all[0];
+      e.kinetic = all[1], e.internal = all[2], e.plastic = all[3], e.viscous = all[4];
+      e.hourglass = all[5], e.external = all[6];
+      penalty = all[7], friction = all[8], released_energy = all[9], n_failed = all[10];
+    }
+    else
+      n_failed = n_failed_particles(*body_);
     HistoryRow r;
     r.time = time_;
     // displacement: the cutter's travel (cutting) or the tip's depth (indentation)
@@ -358,35 +417,34 @@ namespace coupling
     r.force            = impulse_[2] / T;
     r.rolling_force    = -impulse_[0] / T;
     r.side_force       = impulse_[1] / T;
-    r.force_bottom     = support_impulse_z_ / T; // the supports push the block up: + in compression
+    r.force_bottom     = support_impulse_z / T; // the supports push the block up: + in compression
     impulse_           = {{0, 0, 0}};
     support_impulse_z_ = impulse_time_ = 0;
     // mean contact pressure on the tip's projected footprint is not defined for a sliding disc
     r.strain = depth_ / prm_.cutter.block_height;
 
-    const sph::Energies e = body_->energies();
     r.kinetic_energy      = e.kinetic + cutter_->kinetic_energy();
-    r.internal_energy     = e.internal + cutter_->strain_energy() + contact_->penalty_energy();
-    r.dissipated_energy = e.dissipated() + contact_->friction_dissipation() +
-                          cutter_->damping_dissipation() + released_energy_;
+    r.internal_energy     = e.internal + cutter_->strain_energy() + penalty;
+    r.dissipated_energy =
+      e.dissipated() + friction + cutter_->damping_dissipation() + released_energy;
     r.external_work = frame_work_;
-    r.n_failed = n_failed_particles(*body_);
+    r.n_failed      = n_failed;
     return r;
   }
 
   Measurement CuttingDriver::measure()
   {
     Measurement m;
-    m.row                    = history_row();
-    const sph::Energies rock = body_->energies();
-    m.rock_kinetic           = rock.kinetic;
-    m.rock_internal          = rock.internal;
+    sph::Energies rock;
+    m.row           = history_row(rock);
+    m.rock_kinetic  = rock.kinetic;
+    m.rock_internal = rock.internal;
     return m;
   }
 
   ParticleSnapshot CuttingDriver::particle_snapshot() const
   {
-    return coupling::particle_snapshot(*body_);
+    return coupling::particle_snapshot(*body_, domain_.get());
   }
 
   std::vector<MeshSnapshot> CuttingDriver::mesh_snapshots() const
@@ -412,10 +470,18 @@ namespace coupling
     // kinetic-energy allowance of the stability check at the start, when the cutter's work is
     // still tiny: the whole block moving at the cutter's speed
     double block_mass = 0;
-    for (const double m : body_->masses())
-      block_mass += m;
+    if (domain_)
+    {
+      for (const std::int32_t i : domain_->owned_indices())
+        block_mass += body_->masses()[i];
+      block_mass = domain_->sum(block_mass);
+    }
+    else
+      for (const double m : body_->masses())
+        block_mass += m;
     StabilityWatch watch;
     watch.rock         = body_.get();
+    watch.domain       = domain_.get();
     watch.steel        = {{"cutter", cutter_.get()}};
     watch.domain_size  = domain_size_;
     watch.energy_floor = 0.5 * block_mass * prm_.cutter.speed * prm_.cutter.speed;
@@ -433,7 +499,7 @@ namespace coupling
     const CutterParameters &c = prm_.cutter;
     Summary s;
     s.test         = prm_.test;
-    s.n_particles  = body_->n_particles();
+    s.n_particles  = domain_ ? domain_->n_global() : body_->n_particles();
     s.n_steps      = n_steps_;
     s.time_step    = dt_;
     s.stop_reason  = reason;
@@ -487,9 +553,24 @@ namespace coupling
 
     // chip: the particles that failed (damage 1, fully softened), at their initial volume
     double chip = 0;
-    for (unsigned int i = 0; i < body_->n_particles(); ++i)
-      if (body_->damage(i) >= 1.0)
-        chip += volume0_[i];
+    double n_released = static_cast<double>(n_released_), released_energy = released_energy_;
+    double n_contact = static_cast<double>(n_in_contact_);
+    if (domain_)
+    {
+      for (const std::int32_t i : domain_->owned_indices())
+        if (body_->damage(i) >= 1.0)
+          chip += volume0_[i];
+      const std::vector<double> all = domain_->sum({chip, n_released, released_energy, n_contact});
+      chip = all[0], n_released = all[1], released_energy = all[2], n_contact = all[3];
+      report_split(*domain_, force_on_cutter_.size(), s);
+    }
+    else
+    {
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+        if (body_->damage(i) >= 1.0)
+          chip += volume0_[i];
+      s.particles_per_rank = {s.n_particles};
+    }
     const double nan = std::numeric_limits<double>::quiet_NaN();
     auto &x          = s.extra;
     x.push_back({"mean_normal_force_kN", mean(normal) * 1e-3});
@@ -498,8 +579,8 @@ namespace coupling
     x.push_back({"peak_rolling_force_kN", peak(all_rolling) * 1e-3});
     x.push_back({"mean_side_force_kN", mean(side) * 1e-3});
     x.push_back({"chip_volume_cm3", chip * 1e6});
-    x.push_back({"n_chip_particles_released", double(n_released_)});
-    x.push_back({"chip_release_energy_J", released_energy_});
+    x.push_back({"n_chip_particles_released", n_released});
+    x.push_back({"chip_release_energy_J", released_energy});
     // specific energy: the work the cutter did on the rock over the volume it broke out
     x.push_back({"cutter_work_J", frame_work_});
     x.push_back({"specific_energy_MJ_m3", chip > 0 ? frame_work_ / chip * 1e-6 : nan});
@@ -508,9 +589,10 @@ namespace coupling
     x.push_back({"cutter_speed_m_s", c.speed});
     x.push_back({"n_fixed_particles", double(n_fixed_)});
     x.push_back({"n_cutter_nodes", double(cutter_->n_nodes())});
-    x.push_back({"n_contact_particles", double(n_in_contact_)}); // at the end
+    x.push_back({"n_contact_particles", n_contact}); // at the end
     x.push_back({"contact_stiffness_N_m", contact_stiffness_});
-    x.push_back({"n_sph_pairs", double(body_->n_pairs())}); // at the end (tools/bench)
+    x.push_back({"n_sph_pairs",
+                 double(domain_ ? n_global_pairs_ : body_->n_pairs())}); // at the end (tools/bench)
 
     // independent estimates (closed forms) for the same geometry and rock
     const sph::MaterialParameters &rock = prm_.rock;

@@ -4,6 +4,8 @@
 /// save their own; the driver adds its clocks, accounts, history and the chip flags. Per-step
 /// scratch (hits, the cutter's contact forces) is recomputed by every step and is not state; the
 /// particles' contact forces of the last step are, because the chip release reads them first.
+/// A distributed run writes the whole block in global order and its accounts summed over the
+/// ranks (as the laboratory driver does), so that its checkpoint continues on any number of ranks.
 
 #include "cutting_driver.h"
 #include "driver_common.h"
@@ -12,6 +14,7 @@
 
 #include <fem/steel_body.h>
 #include <sph/body.h>
+#include <sph/domain.h>
 
 #include <sstream>
 #include <stdexcept>
@@ -26,27 +29,34 @@ namespace coupling
 
   void CuttingDriver::save_state(StateArrays &out) const
   {
-    body_->save_state(out, "body.");
+    save_rock_state(*body_, domain_.get(), {{"contact.", contact_.get()}}, out);
     cutter_->save_state(out, "cutter.");
-    contact_->save_state(out, "contact.");
-    out["driver.scalars"] = {time_,
-                             static_cast<double>(n_steps_),
-                             frame_work_,
-                             dt_,
-                             static_cast<double>(n_substeps_),
-                             static_cast<double>(body_->n_particles()),
-                             travel_,
-                             depth_,
-                             impulse_[0],
-                             impulse_[1],
-                             impulse_[2],
-                             support_impulse_z_,
-                             impulse_time_,
-                             static_cast<double>(n_in_contact_),
-                             static_cast<double>(n_released_),
-                             released_energy_};
-    out["driver.released"]      = std::vector<double>(released_.begin(), released_.end());
-    out["driver.contact_force"] = force_on_particles_;
+    // the accounts of this rank's particles: of all ranks
+    std::vector<double> mine = {support_impulse_z_, static_cast<double>(n_in_contact_),
+                                static_cast<double>(n_released_), released_energy_};
+    if (domain_)
+      mine = domain_->sum(mine);
+    out["driver.scalars"] = {
+      time_,
+      static_cast<double>(n_steps_),
+      frame_work_,
+      dt_,
+      static_cast<double>(n_substeps_),
+      static_cast<double>(domain_ ? domain_->n_global() : body_->n_particles()),
+      travel_,
+      depth_,
+      impulse_[0],
+      impulse_[1],
+      impulse_[2],
+      mine[0],
+      impulse_time_,
+      mine[1],
+      mine[2],
+      mine[3]};
+    const std::vector<double> released(released_.begin(), released_.end());
+    out["driver.released"] = domain_ ? domain_->gather_owned(released.data(), 1) : released;
+    out["driver.contact_force"] =
+      domain_ ? domain_->gather_owned(force_on_particles_.data(), 3) : force_on_particles_;
   }
 
   void CuttingDriver::load_state(const StateArrays &in)
@@ -64,23 +74,27 @@ namespace coupling
       throw InputError("checkpoint: driver.scalars of another layout; not a checkpoint of an "
                        "indentation or linear-cutting run of this cosim");
     // the same case gives the same particle count, time step and sub-cycling, bit for bit
-    if (d[5] != body_->n_particles() || d[3] != dt_ || d[4] != n_substeps_)
+    const std::size_t n_all = domain_ ? domain_->n_global() : body_->n_particles();
+    if (d[5] != n_all || d[3] != dt_ || d[4] != n_substeps_)
     {
       std::ostringstream os;
       os << "checkpoint: it holds " << d[5] << " particles at dt = " << d[3] << " s, this case has "
-         << body_->n_particles() << " at dt = " << dt_
-         << " s; restart with the case's own used_parameters.prm";
+         << n_all << " at dt = " << dt_ << " s; restart with the case's own used_parameters.prm";
       throw InputError(os.str());
     }
-    const auto &released = find("driver.released"), &force = find("driver.contact_force");
-    if (released.size() != released_.size() || force.size() != force_on_particles_.size())
+    const auto &all_released = find("driver.released"), &all_force = find("driver.contact_force");
+    if (all_released.size() != n_all || all_force.size() != 3 * n_all)
       throw InputError(
         "checkpoint: driver arrays of the wrong size (a checkpoint of another case?)");
+    // distributed: the owned particles' rows, the accounts of all ranks on rank 0
+    const std::vector<double> released =
+      domain_ ? owned_rows(*domain_, all_released, 1) : all_released;
+    const std::vector<double> force = domain_ ? owned_rows(*domain_, all_force, 3) : all_force;
+    const double share              = domain_ && domain_->rank() != 0 ? 0.0 : 1.0;
     try
     {
-      body_->load_state(in, "body.");
+      load_rock_state(*body_, domain_.get(), {{"contact.", contact_.get()}}, in);
       cutter_->load_state(in, "cutter.");
-      contact_->load_state(in, "contact.");
     }
     catch (const std::invalid_argument &e)
     {
@@ -92,11 +106,11 @@ namespace coupling
     travel_            = d[6];
     depth_             = d[7];
     impulse_           = {{d[8], d[9], d[10]}};
-    support_impulse_z_ = d[11];
+    support_impulse_z_  = share * d[11];
     impulse_time_      = d[12];
-    n_in_contact_      = static_cast<std::size_t>(d[13]);
-    n_released_        = static_cast<std::size_t>(d[14]);
-    released_energy_   = d[15];
+    n_in_contact_       = static_cast<std::size_t>(share * d[13]);
+    n_released_         = static_cast<std::size_t>(share * d[14]);
+    released_energy_    = share * d[15];
     force_on_particles_ = force;
     // the chip: released particles stay out of the contact (their stiffness factor 0)
     bool any = false;
@@ -106,11 +120,6 @@ namespace coupling
       any          = any || released_[i];
     }
     if (any)
-    {
-      std::vector<double> factor(released_.size());
-      for (std::size_t i = 0; i < factor.size(); ++i)
-        factor[i] = released_[i] ? 0.0 : 1.0;
-      contact_->set_stiffness_factors(std::move(factor));
-    }
+      exclude_released();
   }
 } // namespace coupling

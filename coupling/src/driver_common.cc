@@ -5,6 +5,7 @@
 #include <fem/steel_body.h>
 #include <sph/body.h>
 #include <sph/domain.h>
+#include <sph/lattice.h>
 #include <sph/rate_strength.h>
 #include <sph/strength_scatter.h>
 
@@ -28,6 +29,224 @@ namespace coupling
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     return size;
+  }
+
+  RockPart make_rock_part(const CaseParameters &p, const sph::Lattice<3> &lattice,
+                          const double strain_rate)
+  {
+    RockPart part;
+    int n_ranks = 1, rank = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    const std::vector<int> owners = sph::bisection_owners<3>(lattice.positions, n_ranks);
+    const double radius           = 2.0 * (p.sph.cslh * p.sph.spacing); // sph::Body's pair cut-off
+    part.domain                   = std::make_unique<sph::Domain>(
+      MPI_COMM_WORLD, owners, sph::local_particles<3>(lattice.positions, owners, rank, radius, 3));
+    const sph::Domain &domain = *part.domain;
+    sph::Lattice<3> mine      = lattice;
+    mine.positions.clear();
+    mine.volumes.clear();
+    for (const std::int32_t g : domain.global_ids())
+    {
+      mine.positions.push_back(lattice.positions[g]);
+      mine.volumes.push_back(lattice.volumes[g]);
+    }
+    part.body          = make_rock_body(p, mine, strain_rate);
+    sph::Body<3> &body = *part.body;
+    body.set_owned(domain.owned());
+    {
+      sph::Vector<3> lo = lattice.positions[0], hi = lo; // as sph::Body finds its centre
+      for (const auto &X : lattice.positions)
+      {
+        lo = lo.cwiseMin(X);
+        hi = hi.cwiseMax(X);
+      }
+      body.set_reference_centre(0.5 * (lo + hi));
+    }
+    // the chunks of the serial body (its pair loops add every sum in their order): from the
+    // owned particles' pair counts, which are complete
+    std::vector<double> count(body.n_particles(), 0.0);
+    for (const std::int32_t i : domain.owned_indices())
+      count[i] = body.n_pairs_as_first(i);
+    const std::vector<double> all = domain.gather(count.data(), 1);
+    std::vector<std::int64_t> pair_begin(all.size() + 1, 0);
+    for (std::size_t i = 0; i < all.size(); ++i)
+      pair_begin[i + 1] = pair_begin[i] + static_cast<std::int64_t>(all[i]);
+    part.n_global_pairs                    = static_cast<std::size_t>(pair_begin.back());
+    const std::vector<std::int32_t> starts = sph::Body<3>::work_chunks(pair_begin, p.sph.chunks);
+    std::vector<std::int32_t> chunk_of;
+    for (const std::int32_t g : domain.global_ids())
+      chunk_of.push_back(static_cast<std::int32_t>(
+                           std::upper_bound(starts.begin(), starts.end(), g) - starts.begin()) -
+                         1);
+    body.set_chunks(chunk_of);
+    return part;
+  }
+
+  void report_split(const sph::Domain &domain, const std::size_t n_summed, Summary &s)
+  {
+    const std::vector<double> counts =
+      domain.all_gather({static_cast<double>(domain.owned_indices().size())});
+    for (const double c : counts)
+      s.particles_per_rank.push_back(static_cast<std::size_t>(c));
+    const std::vector<double> g =
+      domain.sum({static_cast<double>(domain.n_ghosts()), static_cast<double>(domain.n_sent(6))});
+    s.extra.push_back({"ghost_fraction", g[0] / static_cast<double>(domain.n_global())});
+    s.extra.push_back({"halo_bytes_per_step", 8.0 * g[1]});
+    s.extra.push_back({"allreduce_bytes_per_rank_per_step", 8.0 * static_cast<double>(n_summed)});
+  }
+
+  void OwnedParticles::reset(const sph::Body<3> &body, const sph::Domain &domain)
+  {
+    x_.resize(3 * domain.owned_indices().size());
+    v_.resize(x_.size());
+    m_.clear();
+    for (const std::int32_t i : domain.owned_indices())
+      m_.push_back(body.masses()[i]);
+  }
+
+  ContactParticles OwnedParticles::pack(const sph::Body<3> &body, const sph::Domain &domain,
+                                        const std::vector<double> *force)
+  {
+    const auto &owned = domain.owned_indices();
+    const auto &x     = body.positions();
+    const auto &v     = body.velocities();
+    f_.resize(force ? x_.size() : 0);
+    for (std::size_t k = 0; k < owned.size(); ++k)
+      for (int d = 0; d < 3; ++d)
+      {
+        x_[3 * k + d] = x[owned[k]][d];
+        v_[3 * k + d] = v[owned[k]][d];
+        if (force)
+          f_[3 * k + d] = (*force)[3 * owned[k] + d];
+      }
+    ContactParticles particles{x_.data(), v_.data(), m_.data(), owned.size()};
+    if (force)
+      particles.force = f_.data();
+    return particles;
+  }
+
+  void add_contact_forces(sph::Body<3> &body, const sph::Domain *domain,
+                          const std::vector<double> &force)
+  {
+    auto &f_ext = body.external_forces();
+    if (domain)
+    {
+      const auto &owned = domain->owned_indices();
+      for (std::size_t k = 0; k < owned.size(); ++k)
+        for (int d = 0; d < 3; ++d)
+          f_ext[owned[k]][d] += force[3 * k + d];
+    }
+    else
+      for (unsigned int i = 0; i < body.n_particles(); ++i)
+        for (int d = 0; d < 3; ++d)
+          f_ext[i][d] += force[3 * i + d];
+  }
+
+  std::vector<double> owned_rows(const sph::Domain &domain, const std::vector<double> &global,
+                                 const std::size_t width)
+  {
+    std::vector<double> rows;
+    rows.reserve(width * domain.owned_indices().size());
+    for (const std::int32_t i : domain.owned_indices())
+    {
+      const std::size_t g = static_cast<std::size_t>(domain.global_ids()[i]);
+      rows.insert(rows.end(), global.begin() + width * g, global.begin() + width * (g + 1));
+    }
+    return rows;
+  }
+
+  namespace
+  {
+    /// The body's accounts that each rank of a distributed run sums over its own particles.
+    bool rank_share(const std::string &name)
+    {
+      return name == "body.viscous" || name == "body.hourglass" || name == "body.external";
+    }
+
+    bool starts_with(const std::string &text, const std::string &prefix)
+    {
+      return text.compare(0, prefix.size(), prefix) == 0;
+    }
+
+    bool ends_with(const std::string &text, const std::string &suffix)
+    {
+      return text.size() >= suffix.size() &&
+             text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+  } // namespace
+
+  void save_rock_state(const sph::Body<3> &body, const sph::Domain *domain,
+                       const std::vector<std::pair<std::string, const PenaltyContact *>> &contacts,
+                       StateArrays &out)
+  {
+    if (!domain)
+    {
+      body.save_state(out, "body.");
+      for (const auto &[prefix, contact] : contacts)
+        contact->save_state(out, prefix);
+      return;
+    }
+    // the whole body in global order, the accounts summed: a checkpoint of any number of
+    // ranks, which a run on any other number continues
+    StateArrays local;
+    body.save_state(local, "body.");
+    for (const auto &[prefix, contact] : contacts)
+      contact->save_state(local, prefix);
+    const std::size_t n_local = body.n_particles();
+    for (const auto &[name, a] : local) // (the same names in the same order on every rank)
+    {
+      if (rank_share(name) || ends_with(name, ".scalars"))
+        out[name] = domain->sum(a);
+      else if (starts_with(name, "body."))
+        out[name] = a.size() >= n_local && a.size() % n_local == 0
+                      ? domain->gather(a.data(), static_cast<int>(a.size() / n_local))
+                      : a; // pressure, dt_last: the same on every rank
+      else                 // the contacts' arrays of the owned particles
+        out[name] = domain->gather_owned(a.data(), ends_with(name, "tangential_force") ? 3 : 1);
+    }
+  }
+
+  void load_rock_state(sph::Body<3> &body, const sph::Domain *domain,
+                       const std::vector<std::pair<std::string, PenaltyContact *>> &contacts,
+                       const StateArrays &in)
+  {
+    if (!domain)
+    {
+      body.load_state(in, "body.");
+      for (const auto &[prefix, contact] : contacts)
+        contact->load_state(in, prefix);
+      return;
+    }
+    // this rank's rows of the global arrays; the accounts on rank 0 (they are summed)
+    const std::size_t n_all = domain->n_global();
+    auto of_contact         = [&](const std::string &name) {
+      for (const auto &c : contacts)
+        if (starts_with(name, c.first))
+          return true;
+      return false;
+    };
+    StateArrays local;
+    const double share = domain->rank() == 0 ? 1.0 : 0.0;
+    for (const auto &[name, a] : in)
+    {
+      if (rank_share(name) || (of_contact(name) && ends_with(name, ".scalars")))
+      {
+        std::vector<double> b(a);
+        for (double &value : b)
+          value *= share;
+        local[name] = std::move(b);
+      }
+      else if (starts_with(name, "body."))
+        local[name] = a.size() >= n_all && a.size() % n_all == 0
+                        ? domain->scatter(a, static_cast<int>(a.size() / n_all))
+                        : a;
+      else if (of_contact(name))
+        local[name] = owned_rows(*domain, a, a.size() / n_all);
+    }
+    body.load_state(local, "body.");
+    for (const auto &[prefix, contact] : contacts)
+      contact->load_state(local, prefix);
   }
 
   double n_failed_particles(const sph::Body<3> &body, const sph::Domain *domain)

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Helpers shared by the two drivers (SpecimenDriver, CuttingDriver): the solver state as output
-/// snapshots and an FEM body's contact face as the surface PenaltyContact sees. Internal to the
-/// coupling library.
+/// snapshots and an FEM body's contact face as the surface PenaltyContact sees; on more than one
+/// MPI rank, a rank's part of the rock, its owned particles packed for the contact and its share
+/// of checkpoints. Internal to the coupling library.
 
 #include <coupling/case_parameters.h>
 #include <coupling/contact.h>
@@ -11,9 +12,10 @@
 #include <fem/parameters.h>
 #include <sph/lattice.h>
 
+#include <cstdint>
 #include <memory>
-
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sph
@@ -51,6 +53,73 @@ namespace coupling
   /// Number of MPI ranks of the run: the size of MPI_COMM_WORLD, 1 where MPI is not initialised
   /// (a library user's serial program).
   int mpi_ranks();
+
+  /// One rank's part of a distributed rock body (more than one MPI rank).
+  struct RockPart
+  {
+    /// The split: recursive coordinate bisection of the lattice over the ranks of MPI_COMM_WORLD.
+    std::unique_ptr<sph::Domain> domain;
+    /// This rank's particles and the ghosts within three neighbour hops of them (an owned
+    /// particle's force needs its neighbours' stress, whose deformation gradient needs theirs; a
+    /// loaded-face column's outer particle lies up to two hops away), in ascending global index,
+    /// so that every sum over the neighbours runs as in the serial body; with the serial body's
+    /// reference centre and work chunks (every pair sum added in the serial order).
+    std::unique_ptr<sph::Body<3>> body;
+    /// SPH pairs of the whole body.
+    std::size_t n_global_pairs = 0;
+  };
+
+  /// The rock body of case `p` on `lattice` (make_rock_body) split over the ranks of
+  /// MPI_COMM_WORLD: this rank's part. Collective. Total Lagrangian only: the neighbours, and
+  /// so the ghosts, are those of the reference configuration.
+  RockPart make_rock_part(const CaseParameters &p, const sph::Lattice<3> &lattice,
+                          double strain_rate = 0.0);
+
+  /// Distributed runs: the particles each rank owns (Summary::particles_per_rank) and what the
+  /// split costs, as summary extras: ghosts held per particle of the body (ghost_fraction), the
+  /// bytes each step's halo exchange sends (positions and velocities of every ghost) and the
+  /// bytes each rank adds to the step's one sum of the contact forces, `n_summed` doubles.
+  /// Collective.
+  void report_split(const sph::Domain &domain, std::size_t n_summed, Summary &s);
+
+  /// The owned particles of a distributed body packed as the contact takes them (positions,
+  /// velocities, masses and optionally a force per particle, in owned_indices order), so that
+  /// each rank's contact sees its own particles only.
+  class OwnedParticles
+  {
+  public:
+    /// Takes the owned particles' masses [kg] (fixed).
+    void reset(const sph::Body<3> &body, const sph::Domain &domain);
+    /// The owned particles' current positions and velocities; with `force` (3 per local
+    /// particle [N]), theirs of it as ContactParticles::force. Valid until the next pack.
+    ContactParticles pack(const sph::Body<3> &body, const sph::Domain &domain,
+                          const std::vector<double> *force = nullptr);
+
+  private:
+    std::vector<double> x_, v_, m_, f_;
+  };
+
+  /// Adds the contact forces `force` [N] (3 per particle: of every particle, or with `domain` of
+  /// the owned ones in owned_indices order) to the body's external forces.
+  void add_contact_forces(sph::Body<3> &body, const sph::Domain *domain,
+                          const std::vector<double> &force);
+
+  /// The rows of the owned particles (owned_indices order) of `global` (`width` doubles per
+  /// particle of the whole body, in global order).
+  std::vector<double> owned_rows(const sph::Domain &domain, const std::vector<double> &global,
+                                 std::size_t width);
+
+  /// Adds the rock body's and its contacts' state to `out` (body under "body.", each contact
+  /// under its prefix). With `domain`: the whole body in global order, the accounts summed over
+  /// the ranks (collective), so that a checkpoint of any number of ranks continues on any other.
+  void save_rock_state(const sph::Body<3> &body, const sph::Domain *domain,
+                       const std::vector<std::pair<std::string, const PenaltyContact *>> &contacts,
+                       StateArrays &out);
+  /// Restores what save_rock_state wrote (of any number of ranks); with `domain` this rank's
+  /// rows, the summed accounts on rank 0. std::invalid_argument for arrays of another case.
+  void load_rock_state(sph::Body<3> &body, const sph::Domain *domain,
+                       const std::vector<std::pair<std::string, PenaltyContact *>> &contacts,
+                       const StateArrays &in);
 
   /// Number of particles of `body` that have failed (damage 1), as history.csv counts them.
   /// With `domain`: of the whole body (collective); the same below.

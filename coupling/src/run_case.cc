@@ -20,10 +20,7 @@ namespace coupling
     const int n_ranks = mpi_ranks();
     if (n_ranks > 1)
     {
-      const std::string n = std::to_string(n_ranks) + " MPI ranks given";
-      if (parameters.test == "indentation" || parameters.test == "linear-cutting")
-        throw InputError("Test/Type: " + parameters.test + " runs on one MPI rank only (" + n +
-                         "); run it without mpirun or with -np 1");
+      const std::string n         = std::to_string(n_ranks) + " MPI ranks given";
       const sph::Formulation form = parameters.sph.form;
       if (form != sph::Formulation::total_lagrangian &&
           form != sph::Formulation::total_lagrangian_corrected)

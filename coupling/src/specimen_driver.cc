@@ -142,52 +142,11 @@ namespace coupling
     const int n_ranks             = mpi_ranks();
     if (n_ranks > 1)
     {
-      // this rank's subdomain: its particles and the ghosts within three neighbour hops (an
-      // owned particle's force needs its neighbours' stress, whose deformation gradient needs
-      // theirs; a loaded-face column's outer particle lies up to two hops away), kept in global
-      // order so that every sum over the neighbours runs as in the serial body
-      const std::vector<int> owners = sph::bisection_owners<3>(lattice.positions, n_ranks);
-      int rank = 0;
-      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-      const double radius = 2.0 * (prm_.sph.cslh * dx); // sph::Body's pair cut-off
-      domain_ = std::make_unique<sph::Domain>(
-        MPI_COMM_WORLD, owners,
-        sph::local_particles<3>(lattice.positions, owners, rank, radius, 3));
-      sph::Lattice<3> part = lattice;
-      part.positions.clear();
-      part.volumes.clear();
-      for (const std::int32_t g : domain_->global_ids())
-      {
-        part.positions.push_back(lattice.positions[g]);
-        part.volumes.push_back(lattice.volumes[g]);
-      }
-      body_ = make_rock_body(prm_, part, plan_.strain_rate);
-      body_->set_owned(domain_->owned());
-      {
-        sph::Vector<3> lo = lattice.positions[0], hi = lo; // as sph::Body finds its centre
-        for (const auto &X : lattice.positions)
-        {
-          lo = lo.cwiseMin(X);
-          hi = hi.cwiseMax(X);
-        }
-        body_->set_reference_centre(0.5 * (lo + hi));
-      }
-      // the chunks of the serial body (its pair loops add every sum in their order): from the
-      // owned particles' pair counts, which are complete
-      std::vector<double> count(body_->n_particles(), 0.0);
-      for (const std::int32_t i : domain_->owned_indices())
-        count[i] = body_->n_pairs_as_first(i);
-      const std::vector<double> all = domain_->gather(count.data(), 1);
-      std::vector<std::int64_t> pair_begin(all.size() + 1, 0);
-      for (std::size_t i = 0; i < all.size(); ++i)
-        pair_begin[i + 1] = pair_begin[i] + static_cast<std::int64_t>(all[i]);
-      n_global_pairs_ = static_cast<std::size_t>(pair_begin.back());
-      const std::vector<std::int32_t> starts = sph::Body<3>::work_chunks(pair_begin, prm_.sph.chunks);
-      std::vector<std::int32_t> chunk_of;
-      for (const std::int32_t g : domain_->global_ids())
-        chunk_of.push_back(
-          static_cast<std::int32_t>(std::upper_bound(starts.begin(), starts.end(), g) - starts.begin()) - 1);
-      body_->set_chunks(chunk_of);
+      // this rank's subdomain (make_rock_part)
+      RockPart part   = make_rock_part(prm_, lattice, plan_.strain_rate);
+      domain_         = std::move(part.domain);
+      body_           = std::move(part.body);
+      n_global_pairs_ = part.n_global_pairs;
       failure_ = std::make_unique<FailureWatch>(lattice.positions, lattice.volumes, bts_);
       if (!bts_ && prm_.loaded_face_correction)
       {
@@ -200,11 +159,7 @@ namespace coupling
         body_->add_loaded_face(sph::Vector<3>(0, 0, 1), top);
         body_->add_loaded_face(sph::Vector<3>(0, 0, -1), bottom);
       }
-      owned_x_.resize(3 * domain_->owned_indices().size());
-      owned_v_.resize(owned_x_.size());
-      owned_m_.clear();
-      for (const std::int32_t i : domain_->owned_indices())
-        owned_m_.push_back(body_->masses()[i]);
+      owned_.reset(*body_, *domain_);
     }
     else
     {
@@ -531,21 +486,7 @@ namespace coupling
       particles.force = force_before_contact_.data();
     }
     if (domain_) // the owned particles only, packed
-    {
-      const auto &owned = domain_->owned_indices();
-      owned_f_.resize(kinematic ? owned_x_.size() : 0);
-      for (std::size_t k = 0; k < owned.size(); ++k)
-        for (int d = 0; d < 3; ++d)
-        {
-          owned_x_[3 * k + d] = x[owned[k]][d];
-          owned_v_[3 * k + d] = v[owned[k]][d];
-          if (kinematic)
-            owned_f_[3 * k + d] = force_before_contact_[3 * owned[k] + d];
-        }
-      particles = ContactParticles{owned_x_.data(), owned_v_.data(), owned_m_.data(), owned.size()};
-      if (kinematic)
-        particles.force = owned_f_.data();
-    }
+      particles = owned_.pack(*body_, *domain_, kinematic ? &force_before_contact_ : nullptr);
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
     std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);
@@ -555,18 +496,7 @@ namespace coupling
       std::max(max_exchange_imbalance_, domain_ ? reduce_contact_forces() : exchange_imbalance());
 
     // SPH <- contact forces; FEM <- their reactions (the sums cancel to round-off)
-    auto &f_ext = body_->external_forces();
-    if (domain_)
-    {
-      const auto &owned = domain_->owned_indices();
-      for (std::size_t k = 0; k < owned.size(); ++k)
-        for (int d = 0; d < 3; ++d)
-          f_ext[owned[k]][d] += force_on_particles_[3 * k + d];
-    }
-    else
-      for (unsigned int i = 0; i < body_->n_particles(); ++i)
-        for (int d = 0; d < 3; ++d)
-          f_ext[i][d] += force_on_particles_[3 * i + d];
+    add_contact_forces(*body_, domain_.get(), force_on_particles_);
     body_->integrate(dt_);
 
     // work of the boundary loads (confining pressure, loaded-face correction) over this step,
@@ -792,55 +722,11 @@ namespace coupling
     constexpr std::size_t n_scalars = 11;
   } // namespace
 
-  namespace
-  {
-    /// The body's accounts that each rank of a distributed run sums over its own particles.
-    bool rank_share(const std::string &name)
-    {
-      return name == "body.viscous" || name == "body.hourglass" || name == "body.external";
-    }
-
-    bool starts_with(const std::string &text, const std::string &prefix)
-    {
-      return text.compare(0, prefix.size(), prefix) == 0;
-    }
-
-    bool ends_with(const std::string &text, const std::string &suffix)
-    {
-      return text.size() >= suffix.size() &&
-             text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-    }
-  } // namespace
-
   void SpecimenDriver::save_state(StateArrays &out) const
   {
-    if (domain_)
-    {
-      // the whole body in global order, the accounts summed: a checkpoint of any number of
-      // ranks, which a run on any other number continues
-      StateArrays local;
-      body_->save_state(local, "body.");
-      contact_top_->save_state(local, "contact_top.");
-      contact_bottom_->save_state(local, "contact_bottom.");
-      const std::size_t n_local = body_->n_particles();
-      for (const auto &[name, a] : local) // (the same names in the same order on every rank)
-      {
-        if (rank_share(name) || ends_with(name, ".scalars"))
-          out[name] = domain_->sum(a);
-        else if (starts_with(name, "body."))
-          out[name] = a.size() >= n_local && a.size() % n_local == 0 ?
-                        domain_->gather(a.data(), static_cast<int>(a.size() / n_local)) :
-                        a; // pressure, dt_last: the same on every rank
-        else // the contacts' arrays of the owned particles
-          out[name] = domain_->gather_owned(a.data(), ends_with(name, "tangential_force") ? 3 : 1);
-      }
-    }
-    else
-    {
-      body_->save_state(out, "body.");
-      contact_top_->save_state(out, "contact_top.");
-      contact_bottom_->save_state(out, "contact_bottom.");
-    }
+    save_rock_state(
+      *body_, domain_.get(),
+      {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, out);
     top_->save_state(out, "platen_top.");
     bottom_->save_state(out, "platen_bottom.");
     out["driver.scalars"] = {time_,
@@ -879,48 +765,9 @@ namespace coupling
     }
     try
     {
-      if (domain_)
-      {
-        // this rank's rows of the global arrays; the accounts on rank 0 (they are summed)
-        StateArrays local;
-        const double share = domain_->rank() == 0 ? 1.0 : 0.0;
-        for (const auto &[name, a] : in)
-        {
-          if (rank_share(name) || ((starts_with(name, "contact_top.") ||
-                                     starts_with(name, "contact_bottom.")) &&
-                                    ends_with(name, ".scalars")))
-          {
-            std::vector<double> b(a);
-            for (double &value : b)
-              value *= share;
-            local[name] = std::move(b);
-          }
-          else if (starts_with(name, "body."))
-            local[name] = a.size() >= n_all && a.size() % n_all == 0 ?
-                            domain_->scatter(a, static_cast<int>(a.size() / n_all)) :
-                            a;
-          else if (starts_with(name, "contact_top.") || starts_with(name, "contact_bottom."))
-          {
-            const std::size_t w = a.size() / n_all;
-            std::vector<double> b;
-            for (const std::int32_t i : domain_->owned_indices())
-            {
-              const std::size_t g = static_cast<std::size_t>(domain_->global_ids()[i]);
-              b.insert(b.end(), a.begin() + w * g, a.begin() + w * (g + 1));
-            }
-            local[name] = std::move(b);
-          }
-        }
-        body_->load_state(local, "body.");
-        contact_top_->load_state(local, "contact_top.");
-        contact_bottom_->load_state(local, "contact_bottom.");
-      }
-      else
-      {
-        body_->load_state(in, "body.");
-        contact_top_->load_state(in, "contact_top.");
-        contact_bottom_->load_state(in, "contact_bottom.");
-      }
+      load_rock_state(
+        *body_, domain_.get(),
+        {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, in);
       top_->load_state(in, "platen_top.");
       bottom_->load_state(in, "platen_bottom.");
     }
@@ -997,14 +844,7 @@ namespace coupling
     Summary s;
     s.test         = prm_.test;
     s.n_particles  = domain_ ? domain_->n_global() : body_->n_particles();
-    if (domain_)
-    {
-      const std::vector<double> counts =
-        domain_->all_gather({static_cast<double>(domain_->owned_indices().size())});
-      for (const double c : counts)
-        s.particles_per_rank.push_back(static_cast<std::size_t>(c));
-    }
-    else
+    if (!domain_)
       s.particles_per_rank = {s.n_particles};
     s.n_steps      = n_steps_;
     s.true_area    = true_area_;
@@ -1104,17 +944,8 @@ namespace coupling
         r.external_work > 0 ? std::abs(stored - r.external_work) / r.external_work : 0.0;
     }
     failure_->report(*body_, s, domain_.get());
-    if (domain_)
-    {
-      // what the split costs: ghosts held per particle of the body, and the bytes each step sends
-      // (the halo: positions and velocities of every ghost; the summed contact forces)
-      const std::vector<double> g =
-        domain_->sum({static_cast<double>(domain_->n_ghosts()), static_cast<double>(domain_->n_sent(6))});
-      s.extra.push_back({"ghost_fraction", g[0] / static_cast<double>(domain_->n_global())});
-      s.extra.push_back({"halo_bytes_per_step", 8.0 * g[1]});
-      s.extra.push_back({"allreduce_bytes_per_rank_per_step",
-                         8.0 * static_cast<double>(force_on_top_.size() + force_on_bottom_.size() + 7)});
-    }
+    if (domain_) // (the sum of the contact forces: both platens' and 7 more)
+      report_split(*domain_, force_on_top_.size() + force_on_bottom_.size() + 7, s);
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
     s.wall_seconds =

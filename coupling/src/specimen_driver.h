@@ -4,6 +4,7 @@
 /// penalty contact with friction, a loading path, and the measurements a laboratory makes.
 /// Internal to the coupling library; run_case() is the public entry.
 
+#include "driver_common.h"
 #include "run_loop.h"
 
 #include <coupling/case_parameters.h>
@@ -98,10 +99,10 @@ namespace coupling
     std::unique_ptr<sph::Body<3>> body_;
     // distributed runs (more than one MPI rank): this rank's part of the body (null on one
     // rank). body_ then holds the local particles (owned and ghosts, ascending global index),
-    // the contacts the owned ones packed (owned_x_, owned_v_, owned_m_), and every sum over the
-    // particles is taken over the owned ones and summed over the ranks
+    // the contacts the owned ones packed (owned_), and every sum over the particles is taken
+    // over the owned ones and summed over the ranks
     std::unique_ptr<sph::Domain> domain_;
-    std::vector<double> owned_x_, owned_v_, owned_m_, owned_f_; // owned_f_: kinematic contact
+    OwnedParticles owned_;
     std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
     double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]
     std::size_t n_global_pairs_ = 0;            // SPH pairs of the whole body
