@@ -37,6 +37,20 @@ namespace sph
         }
       return layer;
     }
+
+    /// `layer` stacked `n` times, `step` [m] apart: layer k's ring point p at place(k, p), its
+    /// volume p's area times `step`.
+    template <typename Place>
+    void stack_layers(Lattice<3> &out, const std::vector<RingPoint> &layer, const int n,
+                      const double step, const Place &place)
+    {
+      for (int k = 0; k < n; ++k)
+        for (const RingPoint &p : layer)
+          {
+            out.positions.push_back(place(k, p));
+            out.volumes.push_back(p.area * step);
+          }
+    }
   } // namespace
 
   Lattice<3> make_fitted_cylinder(const double D, const double L, const double dx)
@@ -51,12 +65,9 @@ namespace sph
     const std::vector<RingPoint> layer = ring_layer(R, dx, dr);
     const int    nz = n_cells(L, dx);
     const double dz = L / nz;
-    for (int k = 0; k < nz; ++k)
-      for (const RingPoint &p : layer)
-        {
-          out.positions.emplace_back(p.u, p.v, (k + 0.5) * dz);
-          out.volumes.push_back(p.area * dz);
-        }
+    stack_layers(out, layer, nz, dz, [&](const int k, const RingPoint &p) {
+      return Vector<3>(p.u, p.v, (k + 0.5) * dz);
+    });
     out.true_section_area    = pi * R * R;
     out.lattice_section_area = out.true_section_area; // the rings' areas sum to pi R^2
     out.true_volume          = pi * R * R * L;
@@ -78,12 +89,9 @@ namespace sph
     const std::vector<RingPoint> layer = ring_layer(R, dx, dr);
     const int    ny = n_cells(t, dx);
     const double dy = t / ny;
-    for (int k = 0; k < ny; ++k)
-      for (const RingPoint &p : layer)
-        {
-          out.positions.emplace_back(p.u, centred(k, ny, dy), R + p.v);
-          out.volumes.push_back(p.area * dy);
-        }
+    stack_layers(out, layer, ny, dy, [&](const int k, const RingPoint &p) {
+      return Vector<3>(p.u, centred(k, ny, dy), R + p.v);
+    });
     out.true_section_area    = D * t;
     out.lattice_section_area = out.true_section_area; // the splitting plane x = 0 is the diameter's
     out.true_volume          = pi * R * R * t;

@@ -1,6 +1,7 @@
 // The coupled laboratory tests on body-fitted particles (SPH/Particle arrangement = body-fitted,
 // sph/fitted_bodies.h): the elastic cylinder gives the rock's modulus as the lattice does, and the
-// round disc splits from its centre along the loaded diameter.
+// elastic round disc carries its rim load as the line-load solution's centre stresses say (it does
+// not split from its centre yet: on flat platens it fails at the contact first, cases/bts/README.md).
 #include "run_helpers.h"
 
 #include <coupling/run_case.h>
