@@ -108,6 +108,7 @@ namespace coupling
       domain_         = std::move(part.domain);
       body_           = std::move(part.body);
       n_global_pairs_ = part.n_global_pairs;
+      body_->restrict_to_owned(); // the step's work: what the owned particles need
       owned_.reset(*body_, *domain_);
       for (const std::int32_t g : domain_->global_ids())
         volume0_.push_back(lattice.volumes[g]);

@@ -159,6 +159,7 @@ namespace coupling
         body_->add_loaded_face(sph::Vector<3>(0, 0, 1), top);
         body_->add_loaded_face(sph::Vector<3>(0, 0, -1), bottom);
       }
+      body_->restrict_to_owned(); // the step's work: what the owned particles need
       owned_.reset(*body_, *domain_);
     }
     else

@@ -408,6 +408,53 @@ namespace sph
   }
 
   template <int dim>
+  void Body<dim>::restrict_to_owned()
+  {
+    require(total_lagrangian(), "restrict_to_owned: total Lagrangian forms only (the updated "
+                                "Lagrangian ones rebuild their pairs every step)");
+    require(owned_.size() == p_.size(), "restrict_to_owned: set_owned first");
+    const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
+    active_ = owned_;
+    for (std::size_t p = 0; p < n_p; ++p)
+      if (owned_[pairs_.first[p]] || owned_[pairs_.second[p]])
+        active_[pairs_.first[p]] = active_[pairs_.second[p]] = 1;
+    for (const FaceColumn &column : face_columns_)
+      for (const unsigned int k : column.members)
+        if (owned_[k])
+          active_[column.members.front()] = 1;
+    // the pairs with an active particle, in their order, with their cached data
+    constexpr int pair_size = pair_kernel::mixed::pair_size;
+    std::size_t   kept      = 0;
+    for (std::size_t p = 0; p < n_p; ++p)
+      {
+        if (!active_[pairs_.first[p]] && !active_[pairs_.second[p]])
+          continue;
+        pairs_.first[kept]  = pairs_.first[p];
+        pairs_.second[kept] = pairs_.second[p];
+        grad_w_[kept]       = grad_w_[p];
+        if (!hg_factor_.empty())
+          hg_factor_[kept] = hg_factor_[p];
+        if (!pair_float_.empty())
+          std::copy_n(&pair_float_[pair_size * p], pair_size, &pair_float_[pair_size * kept]);
+        ++kept;
+      }
+    pairs_.first.resize(kept);
+    pairs_.second.resize(kept);
+    grad_w_.resize(kept);
+    if (!hg_factor_.empty())
+      hg_factor_.resize(kept);
+    if (!pair_float_.empty())
+      pair_float_.resize(pair_size * kept);
+    for (auto *v : {&pairs_.first, &pairs_.second})
+      v->shrink_to_fit();
+    grad_w_.shrink_to_fit();
+    hg_factor_.shrink_to_fit();
+    pair_float_.shrink_to_fit();
+    build_incidence(n, pairs_);
+    partition_pairs();
+  }
+
+  template <int dim>
   void Body<dim>::compute_correction()
   {
     // L_i = A_i^{-T}, A_i = sum_j V_j (x_j - x_i) grad_i W_ij^T: corrected gradients reproduce the
@@ -622,14 +669,15 @@ namespace sph
                       for (int r = 0; r < dim; ++r)
                         for (int c = 0; c < dim; ++c)
                           p_.F[i](r, c) = a[r][c];
-                      batch[n_batch++] = i;
-                      if (n_batch == stress_batch::lanes || i + 1 == e)
+                      if (active_.empty() || active_[i])
+                        batch[n_batch++] = i;
+                      if (n_batch == stress_batch::lanes || (i + 1 == e && n_batch > 0))
                         {
                           update_stress_batch(model, batch, n_batch);
                           n_batch = 0;
                         }
                     }
-                  else
+                  else if (active_.empty() || active_[i])
                     {
                       Tensor<dim> A;
                       for (int r = 0; r < dim; ++r)

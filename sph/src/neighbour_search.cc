@@ -7,28 +7,25 @@
 
 namespace sph
 {
-  namespace
+  // pair indices ascend within each particle
+  void build_incidence(const std::size_t n, PairList &pairs)
   {
-    /// Incidence lists (CSR) from the pair arrays; pair indices ascend within each particle.
-    void build_incidence(const std::size_t n, PairList &pairs)
-    {
-      pairs.offsets.assign(n + 1, 0);
-      for (std::size_t p = 0; p < pairs.n_pairs(); ++p)
-        {
-          ++pairs.offsets[pairs.first[p] + 1];
-          ++pairs.offsets[pairs.second[p] + 1];
-        }
-      for (std::size_t i = 0; i < n; ++i)
-        pairs.offsets[i + 1] += pairs.offsets[i];
-      pairs.incidence.resize(pairs.offsets[n]);
-      std::vector<std::int32_t> fill(pairs.offsets.begin(), pairs.offsets.end() - 1);
-      for (std::size_t p = 0; p < pairs.n_pairs(); ++p)
-        {
-          pairs.incidence[fill[pairs.first[p]]++]  = static_cast<std::int32_t>(p);
-          pairs.incidence[fill[pairs.second[p]]++] = static_cast<std::int32_t>(p);
-        }
-    }
-  } // namespace
+    pairs.offsets.assign(n + 1, 0);
+    for (std::size_t p = 0; p < pairs.n_pairs(); ++p)
+      {
+        ++pairs.offsets[pairs.first[p] + 1];
+        ++pairs.offsets[pairs.second[p] + 1];
+      }
+    for (std::size_t i = 0; i < n; ++i)
+      pairs.offsets[i + 1] += pairs.offsets[i];
+    pairs.incidence.resize(pairs.offsets[n]);
+    std::vector<std::int32_t> fill(pairs.offsets.begin(), pairs.offsets.end() - 1);
+    for (std::size_t p = 0; p < pairs.n_pairs(); ++p)
+      {
+        pairs.incidence[fill[pairs.first[p]]++]  = static_cast<std::int32_t>(p);
+        pairs.incidence[fill[pairs.second[p]]++] = static_cast<std::int32_t>(p);
+      }
+  }
 
   template <int dim>
   void find_pairs(const std::vector<Vector<dim>> &x, const double radius, PairList &pairs)

@@ -171,6 +171,16 @@ namespace sph
     /// pairs whose first particle is owned) only: the sums over the parts give the whole body's.
     /// Empty (the default): every particle counts.
     void set_owned(const std::vector<std::uint8_t> &owned);
+    /// Distributed bodies, once set_owned, set_chunks and the loaded faces are done (total
+    /// Lagrangian only): restricts each step's work to what the owned particles' forces need.
+    /// The active particles are the owned ones, their neighbours (whose stress and F enter the
+    /// owned pair forces) and the outer particles of loaded-face columns with an owned member
+    /// (whose stress loads the column); only they get a stress update, and the pairs without
+    /// an active particle are dropped (the others keep their order, so every sum of an active
+    /// particle keeps its terms and their order: the same bits). The other ghosts' state is
+    /// then not computed. Throws std::invalid_argument for an updated Lagrangian form or
+    /// without owned flags.
+    void restrict_to_owned();
     /// Distributed bodies: the chunk (see the pair loops) of each particle, non-decreasing, as
     /// the whole body numbers them (work_chunks), so that every sum is added in the order of the
     /// serial body. Throws std::invalid_argument for a wrong size or a decreasing entry.
@@ -267,6 +277,7 @@ namespace sph
     std::vector<std::int32_t> pair_begin_;     // per particle: its first pair as first
     std::vector<std::int32_t> chunk_of_;       // per particle: its chunk (set_chunks; else empty)
     std::vector<std::uint8_t> owned_;          // per particle: counted in sums (set_owned)
+    std::vector<std::uint8_t> active_;         // per particle: stress updated (restrict_to_owned)
     std::vector<std::int32_t> chunk_begin_;    // per chunk: its first particle (and n at the end)
     std::vector<std::int32_t> cross_begin_;    // per chunk: its first cross pair (as first)
     // per chunk, the cross pairs whose j it holds in ascending pair order: their index k in

@@ -27,6 +27,10 @@ namespace sph
     }
   };
 
+  /// Rebuilds the incidence lists (offsets, incidence) of `pairs` for `n` particles from its pair
+  /// arrays (first, second).
+  void build_incidence(std::size_t n, PairList &pairs);
+
   /// Builds the pair list of all particles closer than `radius` [m] (strictly) with a cell list of
   /// cell size `radius`. O(N) for bounded density. Deterministic (same input, same output).
   template <int dim>
