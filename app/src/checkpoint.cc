@@ -4,7 +4,10 @@
 #include <diagnose/csv.h>
 #include <diagnose/text_input.h>
 
+#include "block_rows.h"
+
 #include <hdf5.h>
+#include <mpi.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +20,7 @@ namespace app
 {
   using coupling::InputError;
   using coupling::StateArrays;
+  using coupling::StateRows;
   using diagnose::clip;
 
   namespace
@@ -80,6 +84,31 @@ namespace app
       }
       if (type >= 0)
         H5Tclose(type);
+      H5Aclose(attr);
+      return out;
+    }
+
+    /// A 1-D unsigned 64-bit attribute (of at most 2^20 values), or nothing when absent or
+    /// unreadable.
+    std::optional<std::vector<std::uint64_t>> read_uint64_attribute(const hid_t object, const char *name)
+    {
+      if (H5Aexists(object, name) <= 0)
+        return std::nullopt;
+      const hid_t attr = H5Aopen(object, name, H5P_DEFAULT);
+      if (attr < 0)
+        return std::nullopt;
+      std::optional<std::vector<std::uint64_t>> out;
+      const hid_t space = H5Aget_space(attr);
+      const int   rank  = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
+      hsize_t     n     = 1;
+      if (rank == 0 || (rank == 1 && H5Sget_simple_extent_dims(space, &n, nullptr) >= 0 && n <= (1u << 20)))
+      {
+        std::vector<std::uint64_t> values(n);
+        if (H5Aread(attr, H5T_NATIVE_UINT64, values.data()) >= 0)
+          out = std::move(values);
+      }
+      if (space >= 0)
+        H5Sclose(space);
       H5Aclose(attr);
       return out;
     }
@@ -152,41 +181,219 @@ namespace app
     return hash;
   }
 
-  void write_checkpoint(const std::string &path, const StateArrays &state, const std::string &used_parameters)
+  namespace
+  {
+    /// The checksum attributes of a dataset: the FNV-1a checksums of consecutive blocks of its
+    /// values and the blocks' bounds (value offsets, one more than the checksums).
+    bool write_checksums(const hid_t set, const std::vector<std::uint64_t> &sums,
+                         const std::vector<std::uint64_t> &bounds)
+    {
+      bool ok = true;
+      for (const auto &[name, values] : {std::pair<const char *, const std::vector<std::uint64_t> *>{"fnv1a64", &sums},
+                                         {"fnv1a64_bounds", &bounds}})
+      {
+        const hsize_t n     = values->size();
+        const hid_t   space = H5Screate_simple(1, &n, nullptr);
+        const hid_t   attr  = H5Acreate2(set, name, H5T_NATIVE_UINT64, space, H5P_DEFAULT, H5P_DEFAULT);
+        ok = ok && attr >= 0 && H5Awrite(attr, H5T_NATIVE_UINT64, values->data()) >= 0;
+        if (attr >= 0)
+          H5Aclose(attr);
+        H5Sclose(space);
+      }
+      return ok;
+    }
+
+    /// The file's attributes and every whole array of `state` (all of them without `rows`); with
+    /// `rows`, the datasets of the row arrays made at their whole size, not written.
+    bool write_header_and_whole_arrays(const hid_t file, const StateArrays &state,
+                                       const std::string &used_parameters, const StateRows *rows)
+    {
+      bool ok = write_attribute(file, "cosim_checkpoint_version", H5T_NATIVE_INT, &checkpoint_version) &&
+                write_string_attribute(file, "cosim_version", program_identity()) &&
+                write_string_attribute(file, "used_parameters", used_parameters);
+      for (const auto &[name, values] : state)
+      {
+        if (!ok)
+          break;
+        const bool whole = !rows || rows->width.count(name) == 0;
+        const hsize_t n  = whole ? values.size() : rows->n_global * static_cast<hsize_t>(rows->width.at(name));
+        const hid_t space = H5Screate_simple(1, &n, nullptr);
+        const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+        if (!whole) // every rank writes its block into it (contiguous, allocated now)
+        {
+          H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+          H5Pset_fill_time(plist, H5D_FILL_TIME_NEVER);
+        }
+        const hid_t set = H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+        H5Pclose(plist);
+        ok = set >= 0;
+        if (ok && whole)
+          ok = (n == 0 || H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0) &&
+               write_checksums(set, {fnv1a64(values.data(), values.size() * sizeof(double))}, {0, n});
+        if (set >= 0)
+          H5Dclose(set);
+        H5Sclose(space);
+      }
+      return ok;
+    }
+
+    /// Renames `tmp` over `path`, or removes it; false when anything failed.
+    bool commit_file(const std::string &tmp, const std::string &path, const bool ok)
+    {
+      std::error_code ec;
+      if (ok)
+        std::filesystem::rename(tmp, path, ec);
+      if (!ok || ec)
+        std::filesystem::remove(tmp, ec);
+      return ok && !ec;
+    }
+
+    /// The distributed writer (see write_checkpoint). Collective over MPI_COMM_WORLD.
+    bool write_rows_collectively(std::string path, const StateArrays &state, std::string used_parameters,
+                                 const StateRows &rows)
+    {
+      const MPI_Comm comm = MPI_COMM_WORLD;
+      int rank = 0, size = 1;
+      MPI_Comm_rank(comm, &rank);
+      MPI_Comm_size(comm, &size);
+      broadcast(path, comm);
+      broadcast(used_parameters, comm);
+      const std::string tmp = path + ".tmp";
+      // rank 0: the header, the whole arrays and the row datasets, then the file closed
+      int ok = 1;
+      if (rank == 0)
+      {
+        const hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+        ok = file >= 0 && write_header_and_whole_arrays(file, state, used_parameters, &rows);
+        ok = (file >= 0 && H5Fclose(file) >= 0) && ok;
+      }
+      MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+      if (!ok)
+      {
+        if (rank == 0)
+          commit_file(tmp, path, false);
+        return false;
+      }
+      // every rank: its rows of all row arrays in one exchange, into contiguous blocks
+      std::vector<const std::vector<double> *> arrays;
+      std::vector<std::size_t> widths;
+      std::size_t total = 0;
+      for (const auto &[name, width] : rows.width) // (the same names on every rank)
+      {
+        const auto it = state.find(name);
+        if (it == state.end() || it->second.size() != rows.global_index.size() * width)
+          throw std::logic_error("write_checkpoint: " + name + " is not this rank's rows");
+        arrays.push_back(&it->second);
+        widths.push_back(static_cast<std::size_t>(width));
+        total += static_cast<std::size_t>(width);
+      }
+      std::vector<double> packed;
+      packed.reserve(total * rows.global_index.size());
+      for (std::size_t i = 0; i < rows.global_index.size(); ++i)
+        for (std::size_t a = 0; a < arrays.size(); ++a)
+          packed.insert(packed.end(), arrays[a]->begin() + widths[a] * i, arrays[a]->begin() + widths[a] * (i + 1));
+      const std::vector<double> block = rows_in_blocks(packed, total, rows.global_index, rows.n_global, comm);
+      const std::size_t first = block_start(rows.n_global, rank, size);
+      const std::size_t n_rows = block.size() / std::max<std::size_t>(total, 1);
+      // all ranks open the file with MPI-IO and write their blocks, collectively
+      const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+      H5Pset_fapl_mpio(access, comm, MPI_INFO_NULL);
+      const hid_t file = H5Fopen(tmp.c_str(), H5F_ACC_RDWR, access);
+      H5Pclose(access);
+      int written = file >= 0;
+      MPI_Allreduce(MPI_IN_PLACE, &written, 1, MPI_INT, MPI_MIN, comm);
+      std::vector<std::uint64_t> sums;
+      if (written)
+      {
+        const hid_t transfer = H5Pcreate(H5P_DATASET_XFER);
+        H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE);
+        std::size_t column = 0, a = 0;
+        for (const auto &[name, width] : rows.width)
+        {
+          const std::size_t w = widths[a++];
+          std::vector<double> mine(n_rows * w);
+          for (std::size_t k = 0; k < n_rows; ++k)
+            std::copy_n(block.begin() + k * total + column, w, mine.begin() + k * w);
+          column += w;
+          sums.push_back(fnv1a64(mine.data(), mine.size() * sizeof(double)));
+          const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+          const hid_t file_space = set >= 0 ? H5Dget_space(set) : -1;
+          const hsize_t start = first * w, count = mine.size();
+          const hid_t memory = H5Screate_simple(1, &count, nullptr);
+          if (count > 0 && file_space >= 0)
+            H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+          else
+          {
+            if (file_space >= 0)
+              H5Sselect_none(file_space);
+            H5Sselect_none(memory);
+          }
+          if (set < 0 || file_space < 0 ||
+              H5Dwrite(set, H5T_NATIVE_DOUBLE, memory, file_space, transfer, mine.data()) < 0)
+            written = 0;
+          H5Sclose(memory);
+          if (file_space >= 0)
+            H5Sclose(file_space);
+          if (set >= 0)
+            H5Dclose(set);
+        }
+        H5Pclose(transfer);
+        written = H5Fclose(file) >= 0 && written;
+      }
+      MPI_Allreduce(MPI_IN_PLACE, &written, 1, MPI_INT, MPI_MIN, comm);
+      // rank 0: every block's checksum beside its dataset, then the file renamed over `path`
+      const int n_sums = static_cast<int>(rows.width.size());
+      sums.resize(rows.width.size(), 0);
+      std::vector<std::uint64_t> all(rank == 0 ? static_cast<std::size_t>(n_sums) * size : 0);
+      MPI_Gather(sums.data(), n_sums, MPI_UINT64_T, all.data(), n_sums, MPI_UINT64_T, 0, comm);
+      if (rank == 0)
+      {
+        const hid_t file = written ? H5Fopen(tmp.c_str(), H5F_ACC_RDWR, H5P_DEFAULT) : -1;
+        ok = file >= 0;
+        std::size_t a = 0;
+        for (const auto &[name, width] : rows.width)
+        {
+          if (!ok)
+            break;
+          std::vector<std::uint64_t> block_sums, bounds;
+          for (int r = 0; r < size; ++r)
+          {
+            block_sums.push_back(all[static_cast<std::size_t>(r) * n_sums + a]);
+            bounds.push_back(block_start(rows.n_global, r, size) * widths[a]);
+          }
+          bounds.push_back(rows.n_global * widths[a]);
+          ++a;
+          const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+          ok = set >= 0 && write_checksums(set, block_sums, bounds);
+          if (set >= 0)
+            H5Dclose(set);
+        }
+        ok = (file >= 0 && H5Fclose(file) >= 0) && ok;
+        ok = commit_file(tmp, path, ok);
+      }
+      MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+      return ok;
+    }
+  } // namespace
+
+  void write_checkpoint(const std::string &path, const StateArrays &state, const std::string &used_parameters,
+                        const StateRows *rows)
   {
     silence_hdf5();
+    if (rows)
+    {
+      if (!write_rows_collectively(path, state, used_parameters, *rows))
+        throw std::runtime_error("checkpoint: cannot write " + clip(path) + " (disk full or not writable?)");
+      return;
+    }
     const std::string tmp = path + ".tmp";
     const hid_t file      = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file < 0)
       throw std::runtime_error("checkpoint: cannot create " + clip(tmp) + " (disk full or not writable?)");
-    bool ok = write_attribute(file, "cosim_checkpoint_version", H5T_NATIVE_INT, &checkpoint_version) &&
-              write_string_attribute(file, "cosim_version", program_identity()) &&
-              write_string_attribute(file, "used_parameters", used_parameters);
-    for (const auto &[name, values] : state)
-    {
-      if (!ok)
-        break;
-      const hsize_t n   = values.size();
-      const hid_t space = H5Screate_simple(1, &n, nullptr);
-      const hid_t set   = H5Dcreate2(file, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                                     H5P_DEFAULT, H5P_DEFAULT);
-      const std::uint64_t sum = fnv1a64(values.data(), values.size() * sizeof(double));
-      ok = set >= 0 &&
-           (n == 0 || H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0) &&
-           write_attribute(set, "fnv1a64", H5T_NATIVE_UINT64, &sum);
-      if (set >= 0)
-        H5Dclose(set);
-      H5Sclose(space);
-    }
-    ok = H5Fclose(file) >= 0 && ok;
-    std::error_code ec;
-    if (ok)
-      std::filesystem::rename(tmp, path, ec);
-    if (!ok || ec)
-    {
-      std::filesystem::remove(tmp, ec);
+    bool ok = write_header_and_whole_arrays(file, state, used_parameters, nullptr);
+    ok      = H5Fclose(file) >= 0 && ok;
+    if (!commit_file(tmp, path, ok))
       throw std::runtime_error("checkpoint: cannot write " + clip(path) + " (disk full or not writable?)");
-    }
   }
 
   StateArrays read_checkpoint(const std::string &path, const std::string *used_parameters)
@@ -265,17 +472,21 @@ namespace app
       if (error.empty() && n > 0 &&
           H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
         error = "cannot read dataset " + clip(name, 60) + " (damaged)";
-      std::uint64_t stored_sum = 0;
       if (error.empty())
       {
-        const hid_t sum_attr = H5Aexists(set, "fnv1a64") > 0 ? H5Aopen(set, "fnv1a64", H5P_DEFAULT) : -1;
-        if (sum_attr < 0 || H5Aread(sum_attr, H5T_NATIVE_UINT64, &stored_sum) < 0)
+        const auto sums = read_uint64_attribute(set, "fnv1a64");
+        const auto bounds = read_uint64_attribute(set, "fnv1a64_bounds");
+        bool valid = sums && bounds && !sums->empty() && bounds->size() == sums->size() + 1 &&
+                     bounds->front() == 0 && bounds->back() == n;
+        for (std::size_t b = 0; valid && b < sums->size(); ++b)
+          valid = (*bounds)[b] <= (*bounds)[b + 1];
+        if (!valid)
           error = "dataset " + clip(name, 60) + " has no checksum (damaged?)";
-        else if (stored_sum != fnv1a64(values.data(), values.size() * sizeof(double)))
-          error = "dataset " + clip(name, 60) +
-                  " fails its checksum: the file is damaged; restart from an intact copy or run again";
-        if (sum_attr >= 0)
-          H5Aclose(sum_attr);
+        for (std::size_t b = 0; error.empty() && b < sums->size(); ++b)
+          if ((*sums)[b] != fnv1a64(values.data() + (*bounds)[b],
+                                    ((*bounds)[b + 1] - (*bounds)[b]) * sizeof(double)))
+            error = "dataset " + clip(name, 60) +
+                    " fails its checksum: the file is damaged; restart from an intact copy or run again";
       }
       if (space >= 0)
         H5Sclose(space);

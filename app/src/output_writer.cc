@@ -3,6 +3,8 @@
 
 #include <coupling/errors.h>
 
+#include "block_rows.h"
+
 #include <hdf5.h>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -536,19 +538,9 @@ namespace app
       return f;
     }
 
-    /// MPI_Bcast of a string from rank 0 of `comm`.
-    void broadcast(std::string &text, MPI_Comm comm)
-    {
-      unsigned long size = text.size();
-      MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, comm);
-      text.resize(size);
-      MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, comm);
-    }
-
     /// The rows of `fields` (this rank's, at `global_index`, ascending) moved to the rank whose
-    /// block of the body's `n` rows holds them: rank r gets rows [n r / N, n (r + 1) / N) in
-    /// order, the first of them returned in `first`. One MPI_Alltoallv, so that each rank writes
-    /// one contiguous block (a union of many row runs is slow to select in HDF5).
+    /// block of the body's `n` rows holds them (app::rows_in_blocks), the first of them returned
+    /// in `first`.
     std::vector<ParticleField> rows_in_blocks(const std::vector<ParticleField> &fields,
                                               const std::vector<std::int64_t> &global_index,
                                               const std::size_t n, const MPI_Comm comm, std::size_t &first)
@@ -556,63 +548,39 @@ namespace app
       int rank = 0, size = 1;
       MPI_Comm_rank(comm, &rank);
       MPI_Comm_size(comm, &size);
-      auto block_start = [&](const int r) { return static_cast<std::int64_t>(n * static_cast<std::size_t>(r) / size); };
-      std::size_t width = 1; // the global index, then every field's columns
+      std::size_t width = 0; // every field's columns
       for (const ParticleField &f : fields)
         width += f.columns;
-      std::vector<double> send;
-      send.reserve(width * global_index.size());
+      std::vector<double> rows;
+      rows.reserve(width * global_index.size());
       for (std::size_t i = 0; i < global_index.size(); ++i)
-      {
-        send.push_back(static_cast<double>(global_index[i]));
         for (const ParticleField &f : fields)
           for (std::size_t c = 0; c < f.columns; ++c)
-            send.push_back(f.integer ? static_cast<double>(f.integers[i * f.columns + c])
+            rows.push_back(f.integer ? static_cast<double>(f.integers[i * f.columns + c])
                                      : f.values[i * f.columns + c]);
-      }
-      std::vector<int> send_counts(size), send_offsets(size), receive_counts(size), receive_offsets(size);
-      std::size_t row = 0;
-      for (int r = 0; r < size; ++r)
-      {
-        const std::size_t end = static_cast<std::size_t>(
-          std::lower_bound(global_index.begin(), global_index.end(), block_start(r + 1)) - global_index.begin());
-        send_offsets[r] = static_cast<int>(row * width);
-        send_counts[r]  = static_cast<int>((end - row) * width);
-        row             = end;
-      }
-      MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
-      int total = 0;
-      for (int r = 0; r < size; ++r)
-      {
-        receive_offsets[r] = total;
-        total += receive_counts[r];
-      }
-      std::vector<double> received(static_cast<std::size_t>(total));
-      MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE, received.data(),
-                    receive_counts.data(), receive_offsets.data(), MPI_DOUBLE, comm);
-      first = static_cast<std::size_t>(block_start(rank));
-      const std::size_t rows = static_cast<std::size_t>(block_start(rank + 1)) - first;
+      const std::vector<double> block = app::rows_in_blocks(rows, width, global_index, n, comm);
+      first                  = block_start(n, rank, size);
+      const std::size_t n_rows = block.size() / std::max<std::size_t>(width, 1);
       std::vector<ParticleField> out;
+      std::size_t column = 0;
       for (const ParticleField &f : fields)
       {
         out.push_back({f.name, f.columns, f.units, {}, {}, f.integer});
+        ParticleField &o = out.back();
         if (f.integer)
-          out.back().integers.resize(rows * f.columns);
+          o.integers.resize(n_rows * f.columns);
         else
-          out.back().values.resize(rows * f.columns);
-      }
-      for (std::size_t at = 0; at + width <= received.size(); at += width)
-      {
-        const std::size_t k = static_cast<std::size_t>(received[at]) - first;
-        std::size_t column = at + 1;
-        for (ParticleField &f : out)
-          for (std::size_t c = 0; c < f.columns; ++c, ++column)
+          o.values.resize(n_rows * f.columns);
+        for (std::size_t k = 0; k < n_rows; ++k)
+          for (std::size_t c = 0; c < f.columns; ++c)
           {
+            const double value = block[k * width + column + c];
             if (f.integer)
-              f.integers[k * f.columns + c] = static_cast<int>(received[column]);
+              o.integers[k * f.columns + c] = static_cast<int>(value);
             else
-              f.values[k * f.columns + c] = received[column];
+              o.values[k * f.columns + c] = value;
           }
+        column += f.columns;
       }
       return out;
     }

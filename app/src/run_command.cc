@@ -138,9 +138,9 @@ namespace app
       {}
 
       bool stop_requested() override { return StopSignals::received() != 0; }
-      void checkpoint(std::size_t step, const StateArrays &state) override
+      void checkpoint(std::size_t step, const StateArrays &state, const coupling::StateRows *rows) override
       {
-        write_checkpoint((folder_ / "checkpoint.h5").string(), state, used_parameters_);
+        write_checkpoint((folder_ / "checkpoint.h5").string(), state, used_parameters_, rows);
         checkpoint_step = static_cast<long>(step);
       }
       void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) override
@@ -356,7 +356,7 @@ namespace app
 
     /// What the ranks other than 0 observe: the stop signals (RunLoop agrees on a stop over all
     /// ranks) and the snapshots, whose particle rows every rank writes into rank 0's results.h5
-    /// (write_particle_rows).
+    /// (write_particle_rows), and the checkpoints, which all ranks write together (write_checkpoint).
     class WorkerObserver : public RunObserver
     {
     public:
@@ -365,6 +365,11 @@ namespace app
       {
         if (!particles.global_index.empty())
           write_particle_rows("", "", particles);
+      }
+      void checkpoint(std::size_t, const StateArrays &state, const coupling::StateRows *rows) override
+      {
+        if (rows) // rank 0's path and case
+          write_checkpoint("", state, "", rows);
       }
     };
 

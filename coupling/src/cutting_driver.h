@@ -79,6 +79,7 @@ namespace coupling
     void save_state(StateArrays &out) const override;
     /// Restores what save_state wrote. InputError when the state is of another case.
     void load_state(const StateArrays &in) override;
+    const StateRows *state_rows() const override { return domain_ ? &state_rows_ : nullptr; }
 
     void build_block();
     void build_cutter();
@@ -104,6 +105,7 @@ namespace coupling
     // and the particles' contact forces the owned ones (owned_indices order), and every sum over
     // the particles is taken over the owned ones and summed over the ranks
     std::unique_ptr<sph::Domain> domain_;
+    mutable StateRows            state_rows_; // distributed: the rows of the last save_state
     OwnedParticles owned_;
     std::vector<sph::Vector<3>> x0_global_; ///< reference positions of the whole block [m]
     std::size_t n_global_pairs_ = 0;        ///< SPH pairs of the whole block

@@ -29,7 +29,7 @@ namespace coupling
 
   void CuttingDriver::save_state(StateArrays &out) const
   {
-    save_rock_state(*body_, domain_.get(), {{"contact.", contact_.get()}}, out);
+    save_rock_state(*body_, domain_.get(), {{"contact.", contact_.get()}}, out, &state_rows_);
     cutter_->save_state(out, "cutter.");
     // the accounts of this rank's particles: of all ranks
     std::vector<double> mine = {support_impulse_z_, static_cast<double>(n_in_contact_),
@@ -54,9 +54,13 @@ namespace coupling
       mine[2],
       mine[3]};
     const std::vector<double> released(released_.begin(), released_.end());
-    out["driver.released"] = domain_ ? domain_->gather_owned(released.data(), 1) : released;
-    out["driver.contact_force"] =
-      domain_ ? domain_->gather_owned(force_on_particles_.data(), 3) : force_on_particles_;
+    out["driver.released"]      = released; // (distributed: of the owned particles)
+    out["driver.contact_force"] = force_on_particles_;
+    if (domain_)
+    {
+      state_rows_.width["driver.released"]      = 1;
+      state_rows_.width["driver.contact_force"] = 3;
+    }
   }
 
   void CuttingDriver::load_state(const StateArrays &in)

@@ -183,7 +183,7 @@ namespace coupling
 
   void save_rock_state(const sph::Body<3> &body, const sph::Domain *domain,
                        const std::vector<std::pair<std::string, const PenaltyContact *>> &contacts,
-                       StateArrays &out)
+                       StateArrays &out, StateRows *rows)
   {
     if (!domain)
     {
@@ -192,23 +192,41 @@ namespace coupling
         contact->save_state(out, prefix);
       return;
     }
-    // the whole body in global order, the accounts summed: a checkpoint of any number of
-    // ranks, which a run on any other number continues
+    // this rank's rows of the whole-body arrays, the accounts summed: the checkpoint file holds
+    // the whole body in global order, which a run on any number of ranks continues
     StateArrays local;
     body.save_state(local, "body.");
     for (const auto &[prefix, contact] : contacts)
       contact->save_state(local, prefix);
+    rows->global_index.clear();
+    for (const std::int32_t i : domain->owned_indices())
+      rows->global_index.push_back(domain->global_ids()[i]);
+    rows->n_global             = domain->n_global();
     const std::size_t n_local = body.n_particles();
-    for (const auto &[name, a] : local) // (the same names in the same order on every rank)
+    for (auto &[name, a] : local) // (the same names in the same order on every rank)
     {
       if (rank_share(name) || ends_with(name, ".scalars"))
         out[name] = domain->sum(a);
       else if (starts_with(name, "body."))
-        out[name] = a.size() >= n_local && a.size() % n_local == 0
-                      ? domain->gather(a.data(), static_cast<int>(a.size() / n_local))
-                      : a; // pressure, dt_last: the same on every rank
-      else                 // the contacts' arrays of the owned particles
-        out[name] = domain->gather_owned(a.data(), ends_with(name, "tangential_force") ? 3 : 1);
+      {
+        if (a.size() >= n_local && a.size() % n_local == 0)
+        {
+          const std::size_t w = a.size() / n_local;
+          std::vector<double> mine;
+          mine.reserve(w * domain->owned_indices().size());
+          for (const std::int32_t i : domain->owned_indices())
+            mine.insert(mine.end(), a.begin() + w * i, a.begin() + w * (i + 1));
+          out[name]         = std::move(mine);
+          rows->width[name] = static_cast<int>(w);
+        }
+        else
+          out[name] = std::move(a); // pressure, dt_last: the same on every rank
+      }
+      else // the contacts' arrays of the owned particles
+      {
+        rows->width[name] = ends_with(name, "tangential_force") ? 3 : 1;
+        out[name]         = std::move(a);
+      }
     }
   }
 

@@ -110,11 +110,12 @@ namespace coupling
                                  std::size_t width);
 
   /// Adds the rock body's and its contacts' state to `out` (body under "body.", each contact
-  /// under its prefix). With `domain`: the whole body in global order, the accounts summed over
-  /// the ranks (collective), so that a checkpoint of any number of ranks continues on any other.
+  /// under its prefix). With `domain`: this rank's rows of the per-particle arrays (named in
+  /// `rows`), the accounts summed over the ranks (collective); the checkpoint file made of them
+  /// holds the whole body in global order, which a run on any number of ranks continues.
   void save_rock_state(const sph::Body<3> &body, const sph::Domain *domain,
                        const std::vector<std::pair<std::string, const PenaltyContact *>> &contacts,
-                       StateArrays &out);
+                       StateArrays &out, StateRows *rows = nullptr);
   /// Restores what save_rock_state wrote (of any number of ranks); with `domain` this rank's
   /// rows, the summed accounts on rank 0. std::invalid_argument for arrays of another case.
   void load_rock_state(sph::Body<3> &body, const sph::Domain *domain,

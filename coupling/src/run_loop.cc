@@ -30,7 +30,8 @@ namespace coupling
     void checkpoint_or_stop(RunObserver &observer, const OutputParameters &output,
                             const std::size_t n_steps, const double time,
                             std::chrono::steady_clock::time_point &last_checkpoint,
-                            const SaveState &save_state, const bool *agreed)
+                            const SaveState &save_state, const StateRows *rows,
+                            const bool *agreed)
     {
       const auto now = std::chrono::steady_clock::now();
       bool stop_asked =
@@ -51,7 +52,7 @@ namespace coupling
       {
         StateArrays state;
         save_state(state);
-        observer.checkpoint(n_steps, state);
+        observer.checkpoint(n_steps, state, rows);
         last_checkpoint = now;
       }
       if (stop_asked)
@@ -133,7 +134,7 @@ namespace coupling
 
       // checkpoints: every N steps and/or M minutes, and a final one when asked to stop
       checkpoint_or_stop(observer, output_, n, t, last_checkpoint,
-                         [this](StateArrays &state) { save_state(state); },
+                         [this](StateArrays &state) { save_state(state); }, test_.state_rows(),
                          watch_.domain ? agreed : nullptr);
     }
     return reason;

@@ -69,6 +69,9 @@ namespace coupling
     virtual void save_state(StateArrays &out) const = 0;
     /// Restores save_state's arrays; InputError when they belong to another case.
     virtual void load_state(const StateArrays &in) = 0;
+    /// A distributed run: which arrays of the last save_state are this rank's rows of a
+    /// whole-body array; nullptr (the default): all are whole.
+    virtual const StateRows *state_rows() const { return nullptr; }
   };
 
   /// When rows and snapshots are taken and when the run ends, all in simulated time [s].

@@ -727,7 +727,8 @@ namespace coupling
   {
     save_rock_state(
       *body_, domain_.get(),
-      {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, out);
+      {{"contact_top.", contact_top_.get()}, {"contact_bottom.", contact_bottom_.get()}}, out,
+      &state_rows_);
     top_->save_state(out, "platen_top.");
     bottom_->save_state(out, "platen_bottom.");
     out["driver.scalars"] = {time_,

@@ -81,6 +81,7 @@ namespace coupling
     void save_state(StateArrays &out) const override;
     /// Restores save_state's arrays; InputError when they belong to another case.
     void load_state(const StateArrays &in) override;
+    const StateRows *state_rows() const override { return domain_ ? &state_rows_ : nullptr; }
 
     void build_specimen();
     void build_platens();
@@ -102,6 +103,7 @@ namespace coupling
     // the contacts the owned ones packed (owned_), and every sum over the particles is taken
     // over the owned ones and summed over the ranks
     std::unique_ptr<sph::Domain> domain_;
+    mutable StateRows            state_rows_; // distributed: the rows of the last save_state
     OwnedParticles owned_;
     std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
     double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]

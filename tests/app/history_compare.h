@@ -35,7 +35,7 @@ namespace cosim_test
     coupling::StateArrays last_checkpoint;
     std::size_t checkpoint_step = 0, n_checkpoints = 0;
     void history(const coupling::HistoryRow &r) override { rows.push_back(r); }
-    void checkpoint(std::size_t step, const coupling::StateArrays &state) override
+    void checkpoint(std::size_t step, const coupling::StateArrays &state, const coupling::StateRows *) override
     {
       last_checkpoint = state;
       checkpoint_step = step;

@@ -115,7 +115,7 @@ namespace
       snapshot_times.push_back(t);
     }
     void progress(std::size_t, double, double fraction) override { fractions.push_back(fraction); }
-    void checkpoint(std::size_t step, const StateArrays &state) override
+    void checkpoint(std::size_t step, const StateArrays &state, const StateRows *) override
     {
       checkpoint_state = state;
       checkpoint_step  = step;

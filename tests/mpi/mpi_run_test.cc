@@ -18,6 +18,8 @@
 // as chip is the serial run's exactly.
 #include "subprocess.h"
 
+#include <app/checkpoint.h>
+
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
@@ -318,6 +320,37 @@ TEST(MpiRun, IndentationOnOneToFourRanksGivesTheSerialHistory)
 
 namespace
 {
+  /// The same arrays: the per-particle ones (a multiple of the particle count long) equal to the
+  /// bit, as the particles move by the serial bits (a row in the wrong place differs by a
+  /// particle's whole state); every other value (accounts summed over the ranks, the platens
+  /// they drive, the history rows) within 1e-6 of its array's largest |value|, the tolerance of
+  /// the history comparison and for the same reason (see the file comment).
+  void expect_same_state(const coupling::StateArrays &serial, const coupling::StateArrays &split)
+  {
+    ASSERT_EQ(serial.size(), split.size());
+    ASSERT_EQ(serial.count("body.x"), 1u);
+    const std::size_t n = serial.at("body.x").size() / 3;
+    for (const auto &[name, a] : serial)
+    {
+      SCOPED_TRACE(name);
+      ASSERT_EQ(split.count(name), 1u);
+      const std::vector<double> &b = split.at(name);
+      ASSERT_EQ(a.size(), b.size());
+      if (!a.empty() && a.size() % n == 0)
+      {
+        EXPECT_TRUE(a == b);
+        continue;
+      }
+      double scale = 0, worst = 0;
+      for (std::size_t k = 0; k < a.size(); ++k)
+      {
+        scale = std::max(scale, std::abs(a[k]));
+        worst = std::max(worst, std::abs(a[k] - b[k]));
+      }
+      EXPECT_LE(worst, 1e-6 * scale);
+    }
+  }
+
   /// `case_file` with `extra` stopped after `stop_after` steps on 2 ranks (exit 4, checkpoint.h5
   /// of global arrays) and continued on 3 gives the serial history and steps (the serial run:
   /// `box`/serial, run here unless it is there).
@@ -334,6 +367,12 @@ namespace
     const Result first = run_ranks(box, 2, small_case(case_file, "split", stop));
     ASSERT_EQ(first.status, 4) << first.err;
     ASSERT_TRUE(fs::exists(box.dir() / "split" / "checkpoint.h5"));
+    // the checkpoint both ranks wrote holds the serial run's state at that step: every array,
+    // the particles' rows in the serial order
+    const Result serial_stop = run_ranks(box, 0, small_case(case_file, "serial_stop", stop));
+    ASSERT_EQ(serial_stop.status, 4) << serial_stop.err;
+    expect_same_state(app::read_checkpoint((box.dir() / "serial_stop" / "checkpoint.h5").string()),
+                      app::read_checkpoint((box.dir() / "split" / "checkpoint.h5").string()));
     const Result second = run_ranks(box, 3, {"run", "--restart", "split", "--quiet"});
     ASSERT_EQ(second.status, 0) << second.err;
     EXPECT_TRUE(same_history(read_history(box.dir() / "serial" / "history.csv"),

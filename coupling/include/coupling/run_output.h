@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -110,6 +111,17 @@ namespace coupling
   /// same parameters continues bitwise (same thread count).
   using sph::StateArrays;
 
+  /// A distributed run's share of a checkpoint: the arrays of its StateArrays named in `width`
+  /// hold only this rank's rows of a whole-body array (`width` doubles per particle, the rows of
+  /// the particles `global_index`, ascending) of `n_global` rows; every other array is whole and
+  /// the same on every rank.
+  struct StateRows
+  {
+    std::vector<std::int64_t>  global_index;
+    std::size_t                n_global = 0;
+    std::map<std::string, int> width;
+  };
+
   /// Receives what a run produces, in order: any number of progress / history / snapshot calls.
   class RunObserver
   {
@@ -124,8 +136,10 @@ namespace coupling
     /// (the app answers true after SIGINT / SIGTERM).
     virtual bool stop_requested() { return false; }
     /// A checkpoint is due (Output/Checkpoint interval / minutes, or the run was asked to stop):
-    /// `state` continues the run from after step `step` when given back to run_case.
-    virtual void checkpoint(std::size_t step, const StateArrays &state) {}
+    /// `state` continues the run from after step `step` when given back to run_case. A
+    /// distributed run: called on every rank, `rows` says which arrays are this rank's rows (the
+    /// whole arrays are then never held by one rank); nullptr: every array is whole.
+    virtual void checkpoint(std::size_t step, const StateArrays &state, const StateRows *rows) {}
     /// The run went unstable: called once, just before run_case throws InstabilityError, with
     /// the last state that passed every stability check (after step `step`, at time [s]).
     virtual void last_good_state(std::size_t step, double time, const ParticleSnapshot &particles) {}
