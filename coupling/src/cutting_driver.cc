@@ -108,7 +108,7 @@ namespace coupling
       domain_         = std::move(part.domain);
       body_           = std::move(part.body);
       n_global_pairs_ = part.n_global_pairs;
-      body_->restrict_to_owned(); // the step's work: what the owned particles need
+      body_->restrict_to_owned(*domain_); // each step's work: what the owned particles need
       owned_.reset(*body_, *domain_);
       for (const std::int32_t g : domain_->global_ids())
         volume0_.push_back(lattice.volumes[g]);
@@ -328,7 +328,7 @@ namespace coupling
 
   void CuttingDriver::step()
   {
-    body_->compute_forces();
+    body_->compute_forces(domain_.get());
     const ContactSurface s = contact_surface(*cutter_);
 
     const auto &x = body_->positions();

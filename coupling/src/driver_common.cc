@@ -40,11 +40,10 @@ namespace coupling
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     const std::vector<int> owners = sph::bisection_owners<3>(lattice.positions, n_ranks);
     const double radius           = 2.0 * (p.sph.cslh * p.sph.spacing); // sph::Body's pair cut-off
-    // four hops of ghosts: an owned particle's force needs the stress of its neighbours (one
-    // hop) and of the outer particle of its loaded-face column (up to two), a stress needs the
-    // positions one hop further (three); an owned outer particle's column area needs L of its
-    // lowest member's neighbours (three), and L the positions around them (four). Only the
-    // first three are refreshed by a step's work (sph::Body::restrict_to_owned)
+    // four hops of ghosts, for the set-up: the column area of an owned outer particle of a
+    // loaded face needs L of its lowest member's neighbours (three hops) and L the positions
+    // around them (four). A step then refreshes only the ghosts it reads: the neighbours of the
+    // owned particles and the outer particles of their columns (sph::Body::restrict_to_owned)
     part.domain = std::make_unique<sph::Domain>(
       MPI_COMM_WORLD, owners, sph::local_particles<3>(lattice.positions, owners, rank, radius, 4));
     const sph::Domain &domain = *part.domain;

@@ -159,7 +159,7 @@ namespace coupling
         body_->add_loaded_face(sph::Vector<3>(0, 0, 1), top);
         body_->add_loaded_face(sph::Vector<3>(0, 0, -1), bottom);
       }
-      body_->restrict_to_owned(); // the step's work: what the owned particles need
+      body_->restrict_to_owned(*domain_); // each step's work: what the owned particles need
       owned_.reset(*body_, *domain_);
     }
     else
@@ -463,7 +463,7 @@ namespace coupling
 
   void SpecimenDriver::step()
   {
-    body_->compute_forces();
+    body_->compute_forces(domain_.get());
     if (ctcs_)
       body_->set_surface_pressure(prm_.confining_pressure *
                                   std::min(1.0, time_ / plan_.confinement_time));

@@ -408,26 +408,31 @@ namespace sph
   }
 
   template <int dim>
-  void Body<dim>::restrict_to_owned()
+  void Body<dim>::restrict_to_owned(Domain &domain)
   {
     require(total_lagrangian(), "restrict_to_owned: total Lagrangian forms only (the updated "
                                 "Lagrangian ones rebuild their pairs every step)");
-    require(owned_.size() == p_.size(), "restrict_to_owned: set_owned first");
+    require(owned_.size() == p_.size() && domain.owned() == owned_,
+            "restrict_to_owned: set_owned(domain.owned()) first");
     const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
+    // the stress of the owned particles only; the ghosts that a step reads: the other particles
+    // of their pairs and the outer particles of their loaded-face columns
     active_ = owned_;
+    std::vector<std::uint8_t> needed(n, 0);
     for (std::size_t p = 0; p < n_p; ++p)
       if (owned_[pairs_.first[p]] || owned_[pairs_.second[p]])
-        active_[pairs_.first[p]] = active_[pairs_.second[p]] = 1;
+        needed[pairs_.first[p]] = needed[pairs_.second[p]] = 1;
     for (const FaceColumn &column : face_columns_)
       for (const unsigned int k : column.members)
         if (owned_[k])
-          active_[column.members.front()] = 1;
-    // the pairs with an active particle, in their order, with their cached data
+          needed[column.members.front()] = 1;
+    domain.restrict_exchange(needed);
+    // the pairs with an owned particle, in their order, with their cached data
     constexpr int pair_size = pair_kernel::mixed::pair_size;
     std::size_t   kept      = 0;
     for (std::size_t p = 0; p < n_p; ++p)
       {
-        if (!active_[pairs_.first[p]] && !active_[pairs_.second[p]])
+        if (!owned_[pairs_.first[p]] && !owned_[pairs_.second[p]])
           continue;
         pairs_.first[kept]  = pairs_.first[p];
         pairs_.second[kept] = pairs_.second[p];
@@ -1100,12 +1105,21 @@ namespace sph
   }
 
   template <int dim>
-  void Body<dim>::compute_forces()
+  void Body<dim>::compute_forces(const Domain *domain)
   {
     if (total_lagrangian())
       update_stress_total_lagrangian();
     else
       update_stress_updated_lagrangian();
+    if (domain) // what the pair forces read of the ghosts, from their owners
+      {
+        static_assert(sizeof(Tensor<dim>) == dim * dim * sizeof(double) &&
+                      sizeof(Tensor3) == 9 * sizeof(double));
+        domain->exchange({{Q_.front().data(), dim * dim},
+                          {p_.F.front().data(), dim * dim},
+                          {p_.stress.front().data(), 9},
+                          {p_.density.data(), 1}});
+      }
     pair_forces();
   }
 

@@ -134,18 +134,47 @@ namespace sph
     check(MPI_Comm_rank(comm_, &rank_), "MPI_Comm_rank");
     check(MPI_Comm_size(comm_, &n_ranks_), "MPI_Comm_size");
     owned_.assign(local_.size(), 0);
-    std::vector<std::vector<std::int32_t>> wanted(n_ranks_); // global ids we receive, per owner
+    owner_.resize(local_.size());
     for (std::size_t k = 0; k < local_.size(); ++k)
       {
-        const int o = owners[local_[k]];
-        if (o == rank_)
+        owner_[k] = owners[local_[k]];
+        if (owner_[k] == rank_)
           {
             owned_[k] = 1;
             owned_indices_.push_back(static_cast<std::int32_t>(k));
           }
-        else
-          wanted[o].push_back(local_[k]);
       }
+    plan_exchange(std::vector<std::uint8_t>(local_.size(), 1));
+    // every rank's owned global indices, for gather
+    const int n_owned = static_cast<int>(owned_indices_.size());
+    owned_counts_.assign(n_ranks_, 0);
+    check(MPI_Allgather(&n_owned, 1, MPI_INT, owned_counts_.data(), 1, MPI_INT, comm_),
+          "MPI_Allgather");
+    std::vector<int> displ(n_ranks_, 0);
+    for (int r = 1; r < n_ranks_; ++r)
+      displ[r] = displ[r - 1] + owned_counts_[r - 1];
+    std::vector<std::int32_t> mine;
+    for (const std::int32_t k : owned_indices_)
+      mine.push_back(local_[k]);
+    all_owned_.resize(n_global_);
+    check(MPI_Allgatherv(mine.data(), n_owned, MPI_INT32_T, all_owned_.data(),
+                         owned_counts_.data(), displ.data(), MPI_INT32_T, comm_),
+          "MPI_Allgatherv");
+  }
+
+  void Domain::restrict_exchange(const std::vector<std::uint8_t> &needed)
+  {
+    if (needed.size() != local_.size())
+      throw std::invalid_argument("sph::Domain::restrict_exchange: one flag per local particle");
+    plan_exchange(needed);
+  }
+
+  void Domain::plan_exchange(const std::vector<std::uint8_t> &needed)
+  {
+    std::vector<std::vector<std::int32_t>> wanted(n_ranks_); // global ids we receive, per owner
+    for (std::size_t k = 0; k < local_.size(); ++k)
+      if (owner_[k] != rank_ && needed[k])
+        wanted[owner_[k]].push_back(local_[k]);
     // tell each owner which of its particles we hold as ghosts (ascending global index)
     std::vector<int> n_want(n_ranks_), n_asked(n_ranks_);
     for (int r = 0; r < n_ranks_; ++r)
@@ -171,6 +200,9 @@ namespace sph
         throw std::logic_error("sph::Domain: a ghost asked for a particle this rank lacks");
       return static_cast<std::int32_t>(it - local_.begin());
     };
+    peers_.clear();
+    send_rows_.clear();
+    recv_rows_.clear();
     for (int r = 0; r < n_ranks_; ++r)
       {
         if (n_want[r] == 0 && n_asked[r] == 0)
@@ -184,21 +216,6 @@ namespace sph
         send_rows_.push_back(std::move(s));
         recv_rows_.push_back(std::move(g));
       }
-    // every rank's owned global indices, for gather
-    const int n_owned = static_cast<int>(owned_indices_.size());
-    owned_counts_.assign(n_ranks_, 0);
-    check(MPI_Allgather(&n_owned, 1, MPI_INT, owned_counts_.data(), 1, MPI_INT, comm_),
-          "MPI_Allgather");
-    std::vector<int> displ(n_ranks_, 0);
-    for (int r = 1; r < n_ranks_; ++r)
-      displ[r] = displ[r - 1] + owned_counts_[r - 1];
-    std::vector<std::int32_t> mine;
-    for (const std::int32_t k : owned_indices_)
-      mine.push_back(local_[k]);
-    all_owned_.resize(n_global_);
-    check(MPI_Allgatherv(mine.data(), n_owned, MPI_INT32_T, all_owned_.data(),
-                         owned_counts_.data(), displ.data(), MPI_INT32_T, comm_),
-          "MPI_Allgatherv");
   }
 
   void Domain::exchange(const std::vector<std::pair<double *, int>> &fields) const

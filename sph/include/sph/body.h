@@ -161,8 +161,10 @@ namespace sph
 
     /// tssfac * min_i h_i / (c + |v_i|) [s], c the P-wave speed sqrt((K + 4G/3)/rho).
     double stable_time_step() const;
-    /// Stress update to the current positions and all forces there (call once per step).
-    void compute_forces();
+    /// Stress update to the current positions and all forces there (call once per step). A
+    /// distributed body (restrict_to_owned) passes its domain: the ghosts' stress, F, P L and
+    /// density from their owners between the two (collective).
+    void compute_forces(const Domain *domain = nullptr);
     /// Advances velocities and positions by dt [s] (see the file comment).
     void integrate(double dt);
 
@@ -171,16 +173,15 @@ namespace sph
     /// pairs whose first particle is owned) only: the sums over the parts give the whole body's.
     /// Empty (the default): every particle counts.
     void set_owned(const std::vector<std::uint8_t> &owned);
-    /// Distributed bodies, once set_owned, set_chunks and the loaded faces are done (total
-    /// Lagrangian only): restricts each step's work to what the owned particles' forces need.
-    /// The active particles are the owned ones, their neighbours (whose stress and F enter the
-    /// owned pair forces) and the outer particles of loaded-face columns with an owned member
-    /// (whose stress loads the column); only they get a stress update, and the pairs without
-    /// an active particle are dropped (the others keep their order, so every sum of an active
-    /// particle keeps its terms and their order: the same bits). The other ghosts' state is
-    /// then not computed. Throws std::invalid_argument for an updated Lagrangian form or
-    /// without owned flags.
-    void restrict_to_owned();
+    /// Distributed bodies, once set_owned(domain.owned()), set_chunks and the loaded faces are
+    /// done (total Lagrangian only): each step then computes the stress of the owned particles
+    /// only, keeps only the pairs with an owned particle (the others keep their order, so every
+    /// sum of an owned particle keeps its terms and their order: the same bits), and
+    /// compute_forces(&domain) takes the ghosts' stress fields from their owners; `domain`
+    /// exchanges only the ghosts a step reads (the other particles of those pairs and the outer
+    /// particles of loaded-face columns with an owned member). Collective. Throws
+    /// std::invalid_argument for an updated Lagrangian form or other owned flags.
+    void restrict_to_owned(Domain &domain);
     /// Distributed bodies: the chunk (see the pair loops) of each particle, non-decreasing, as
     /// the whole body numbers them (work_chunks), so that every sum is added in the order of the
     /// serial body. Throws std::invalid_argument for a wrong size or a decreasing entry.

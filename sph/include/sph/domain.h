@@ -56,8 +56,13 @@ namespace sph
     const std::vector<std::uint8_t> &owned() const { return owned_; }
     /// The local indices of the owned particles, ascending.
     const std::vector<std::int32_t> &owned_indices() const { return owned_indices_; }
-    /// Number of ghosts.
+    /// Number of ghosts held (restrict_exchange does not change it).
     std::size_t n_ghosts() const { return local_.size() - owned_indices_.size(); }
+
+    /// From now on `exchange` refreshes only the ghosts flagged in `needed` (one flag per local
+    /// particle; owned ones are ignored): those whose fields a step reads. Collective.
+    /// std::invalid_argument for a wrong size.
+    void restrict_exchange(const std::vector<std::uint8_t> &needed);
 
     /// Refreshes the ghosts' entries of `width` doubles each in `field` (one row per local
     /// particle) from their owners: one packed message per neighbouring rank, non-blocking.
@@ -91,12 +96,16 @@ namespace sph
     double max(double value) const;
 
   private:
+    // the send and receive lists of the ghosts flagged in `needed` (one flag per local particle)
+    void plan_exchange(const std::vector<std::uint8_t> &needed);
+
     MPI_Comm                  comm_;
     int                       rank_ = 0, n_ranks_ = 1;
     std::size_t               n_global_ = 0;
     std::vector<std::int32_t> local_;
     std::vector<std::uint8_t> owned_;
     std::vector<std::int32_t> owned_indices_;
+    std::vector<int>          owner_; // per local particle: its owner's rank
     // per neighbouring rank: the local indices of the rows sent to it and received from it
     std::vector<int>                       peers_;
     std::vector<std::vector<std::int32_t>> send_rows_, recv_rows_;
