@@ -89,12 +89,16 @@ namespace coupling
 
   void report_split(const sph::Domain &domain, const std::size_t n_summed, Summary &s)
   {
+    // a step's two exchanges per refreshed ghost: position and velocity (exchange_ghosts), and
+    // P L, F, stress and density (compute_forces)
+    constexpr int halo_doubles_per_ghost = 6 + 9 + 9 + 9 + 1;
     const std::vector<double> counts =
       domain.all_gather({static_cast<double>(domain.owned_indices().size())});
     for (const double c : counts)
       s.particles_per_rank.push_back(static_cast<std::size_t>(c));
     const std::vector<double> g =
-      domain.sum({static_cast<double>(domain.n_ghosts()), static_cast<double>(domain.n_sent(6))});
+      domain.sum({static_cast<double>(domain.n_ghosts()),
+                  static_cast<double>(domain.n_sent(halo_doubles_per_ghost))});
     s.extra.push_back({"ghost_fraction", g[0] / static_cast<double>(domain.n_global())});
     s.extra.push_back({"halo_bytes_per_step", 8.0 * g[1]});
     s.extra.push_back({"allreduce_bytes_per_rank_per_step", 8.0 * static_cast<double>(n_summed)});

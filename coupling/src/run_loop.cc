@@ -441,9 +441,13 @@ namespace coupling
     last_good_.stress.resize(6 * n);
     last_good_.plastic_strain.resize(n);
     last_good_.damage.resize(n);
+    // a distributed rock: the owned particles' rows (the only ones gathered in `fail`)
+    const std::uint8_t *owned = watch_.domain ? watch_.domain->owned().data() : nullptr;
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < static_cast<long>(n); ++i)
     {
+      if (owned && !owned[i])
+        continue;
       for (int d = 0; d < 3; ++d)
       {
         last_good_.position[3 * i + d]     = x[i][d];

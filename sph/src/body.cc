@@ -417,7 +417,7 @@ namespace sph
     const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
     // the stress of the owned particles only; the ghosts that a step reads: the other particles
     // of their pairs and the outer particles of their loaded-face columns
-    active_ = owned_;
+    restricted_ = true;
     std::vector<std::uint8_t> needed(n, 0);
     for (std::size_t p = 0; p < n_p; ++p)
       if (owned_[pairs_.first[p]] || owned_[pairs_.second[p]])
@@ -427,6 +427,9 @@ namespace sph
         if (owned_[k])
           needed[column.members.front()] = 1;
     domain.restrict_exchange(needed);
+    read_ = owned_;
+    for (std::size_t i = 0; i < n; ++i)
+      read_[i] |= needed[i];
     // the pairs with an owned particle, in their order, with their cached data
     constexpr int pair_size = pair_kernel::mixed::pair_size;
     std::size_t   kept      = 0;
@@ -674,7 +677,7 @@ namespace sph
                       for (int r = 0; r < dim; ++r)
                         for (int c = 0; c < dim; ++c)
                           p_.F[i](r, c) = a[r][c];
-                      if (active_.empty() || active_[i])
+                      if (!restricted_ || owned_[i])
                         batch[n_batch++] = i;
                       if (n_batch == stress_batch::lanes || (i + 1 == e && n_batch > 0))
                         {
@@ -682,7 +685,7 @@ namespace sph
                           n_batch = 0;
                         }
                     }
-                  else if (active_.empty() || active_[i])
+                  else if (!restricted_ || owned_[i])
                     {
                       Tensor<dim> A;
                       for (int r = 0; r < dim; ++r)
@@ -1059,6 +1062,8 @@ namespace sph
             namespace m = pair_kernel::mixed::field;
             for (std::int32_t i = begin; i < end; ++i)
               {
+                if (restricted_ && !read_[i])
+                  continue;
                 float *r = &frecord_[pair_kernel::mixed::float_size * static_cast<std::size_t>(i)];
                 for (int k = 0; k < 9; ++k)
                   {
@@ -1082,6 +1087,8 @@ namespace sph
           }
         for (std::int32_t i = begin; i < end; ++i)
           {
+            if (restricted_ && !read_[i])
+              continue;
             double *r = &record_[pair_kernel::record_size * static_cast<std::size_t>(i)];
             // element loops, not std::copy: a memmove call per 72 bytes costs more than the copy
             const double *q = Q_[i].data(), *F = p_.F[i].data();
@@ -1128,7 +1135,10 @@ namespace sph
   {
     const std::size_t n = p_.size();
     const std::uint8_t *owned = owned_.empty() ? nullptr : owned_.data();
+    const bool          only_owned = restricted_; // the ghosts come from their owners
     external_ += deterministic_sum(n, n_threads_, [&](const std::size_t i) {
+      if (only_owned && !owned[i])
+        return 0.0;
       const Vector<dim> f = p_.f_int[i] + p_.f_pressure[i] + p_.f_ext[i];
       Vector<dim>       v = p_.v[i] + (dt / p_.mass[i]) * f;
       Vector<dim>       r = Vector<dim>::Zero();

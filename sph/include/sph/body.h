@@ -278,7 +278,8 @@ namespace sph
     std::vector<std::int32_t> pair_begin_;     // per particle: its first pair as first
     std::vector<std::int32_t> chunk_of_;       // per particle: its chunk (set_chunks; else empty)
     std::vector<std::uint8_t> owned_;          // per particle: counted in sums (set_owned)
-    std::vector<std::uint8_t> active_;         // per particle: stress updated (restrict_to_owned)
+    bool                      restricted_ = false; // restrict_to_owned was called
+    std::vector<std::uint8_t> read_;  // per particle (restrict_to_owned): owned, or a ghost a step reads
     std::vector<std::int32_t> chunk_begin_;    // per chunk: its first particle (and n at the end)
     std::vector<std::int32_t> cross_begin_;    // per chunk: its first cross pair (as first)
     // per chunk, the cross pairs whose j it holds in ascending pair order: their index k in
