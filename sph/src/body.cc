@@ -415,21 +415,17 @@ namespace sph
     require(owned_.size() == p_.size() && domain.owned() == owned_,
             "restrict_to_owned: set_owned(domain.owned()) first");
     const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
-    // the stress of the owned particles only; the ghosts that a step reads: the other particles
-    // of their pairs and the outer particles of their loaded-face columns
-    restricted_ = true;
-    std::vector<std::uint8_t> needed(n, 0);
+    // the stress of the owned particles only; what a step reads: the owned particles, the other
+    // particles of their pairs and the outer particles of their loaded-face columns
+    read_ = owned_;
     for (std::size_t p = 0; p < n_p; ++p)
       if (owned_[pairs_.first[p]] || owned_[pairs_.second[p]])
-        needed[pairs_.first[p]] = needed[pairs_.second[p]] = 1;
+        read_[pairs_.first[p]] = read_[pairs_.second[p]] = 1;
     for (const FaceColumn &column : face_columns_)
       for (const unsigned int k : column.members)
         if (owned_[k])
-          needed[column.members.front()] = 1;
-    domain.restrict_exchange(needed);
-    read_ = owned_;
-    for (std::size_t i = 0; i < n; ++i)
-      read_[i] |= needed[i];
+          read_[column.members.front()] = 1;
+    domain.restrict_exchange(read_);
     // the pairs with an owned particle, in their order, with their cached data
     constexpr int pair_size = pair_kernel::mixed::pair_size;
     std::size_t   kept      = 0;
@@ -677,7 +673,7 @@ namespace sph
                       for (int r = 0; r < dim; ++r)
                         for (int c = 0; c < dim; ++c)
                           p_.F[i](r, c) = a[r][c];
-                      if (!restricted_ || owned_[i])
+                      if (read_.empty() || owned_[i])
                         batch[n_batch++] = i;
                       if (n_batch == stress_batch::lanes || (i + 1 == e && n_batch > 0))
                         {
@@ -685,7 +681,7 @@ namespace sph
                           n_batch = 0;
                         }
                     }
-                  else if (!restricted_ || owned_[i])
+                  else if (read_.empty() || owned_[i])
                     {
                       Tensor<dim> A;
                       for (int r = 0; r < dim; ++r)
@@ -1062,7 +1058,7 @@ namespace sph
             namespace m = pair_kernel::mixed::field;
             for (std::int32_t i = begin; i < end; ++i)
               {
-                if (restricted_ && !read_[i])
+                if (!read_.empty() && !read_[i])
                   continue;
                 float *r = &frecord_[pair_kernel::mixed::float_size * static_cast<std::size_t>(i)];
                 for (int k = 0; k < 9; ++k)
@@ -1087,7 +1083,7 @@ namespace sph
           }
         for (std::int32_t i = begin; i < end; ++i)
           {
-            if (restricted_ && !read_[i])
+            if (!read_.empty() && !read_[i])
               continue;
             double *r = &record_[pair_kernel::record_size * static_cast<std::size_t>(i)];
             // element loops, not std::copy: a memmove call per 72 bytes costs more than the copy
@@ -1120,6 +1116,7 @@ namespace sph
       update_stress_updated_lagrangian();
     if (domain) // what the pair forces read of the ghosts, from their owners
       {
+        require(!read_.empty(), "compute_forces: restrict_to_owned(domain) first");
         static_assert(sizeof(Tensor<dim>) == dim * dim * sizeof(double) &&
                       sizeof(Tensor3) == 9 * sizeof(double));
         domain->exchange({{Q_.front().data(), dim * dim},
@@ -1135,7 +1132,7 @@ namespace sph
   {
     const std::size_t n = p_.size();
     const std::uint8_t *owned = owned_.empty() ? nullptr : owned_.data();
-    const bool          only_owned = restricted_; // the ghosts come from their owners
+    const bool          only_owned = !read_.empty(); // the ghosts come from their owners
     external_ += deterministic_sum(n, n_threads_, [&](const std::size_t i) {
       if (only_owned && !owned[i])
         return 0.0;

@@ -163,7 +163,8 @@ namespace sph
     double stable_time_step() const;
     /// Stress update to the current positions and all forces there (call once per step). A
     /// distributed body (restrict_to_owned) passes its domain: the ghosts' stress, F, P L and
-    /// density from their owners between the two (collective).
+    /// density from their owners between the two (collective; std::invalid_argument before
+    /// restrict_to_owned).
     void compute_forces(const Domain *domain = nullptr);
     /// Advances velocities and positions by dt [s] (see the file comment).
     void integrate(double dt);
@@ -278,8 +279,8 @@ namespace sph
     std::vector<std::int32_t> pair_begin_;     // per particle: its first pair as first
     std::vector<std::int32_t> chunk_of_;       // per particle: its chunk (set_chunks; else empty)
     std::vector<std::uint8_t> owned_;          // per particle: counted in sums (set_owned)
-    bool                      restricted_ = false; // restrict_to_owned was called
-    std::vector<std::uint8_t> read_;  // per particle (restrict_to_owned): owned, or a ghost a step reads
+    // per particle, set by restrict_to_owned (empty before): owned, or a ghost a step reads
+    std::vector<std::uint8_t> read_;
     std::vector<std::int32_t> chunk_begin_;    // per chunk: its first particle (and n at the end)
     std::vector<std::int32_t> cross_begin_;    // per chunk: its first cross pair (as first)
     // per chunk, the cross pairs whose j it holds in ascending pair order: their index k in
