@@ -111,6 +111,7 @@ namespace coupling
     }
     face_box_    = box;
     grid_origin_ = lo;
+    grid_top_    = hi;
     grid_cell_   = std::max(largest, 1e-12);
     for (int d = 0; d < 3; ++d)
       grid_n_[d] = std::max(1, static_cast<int>(std::ceil((hi[d] - lo[d]) / grid_cell_)));
@@ -149,6 +150,14 @@ namespace coupling
   PenaltyContact::Hit PenaltyContact::find_face(const double *x, const ContactSurface &s) const
   {
     Hit best;
+    // a flat or concave master takes only faces whose inflated box (with the slack below) holds
+    // the particle: beyond the boxes' upper corner none does. The grid's last cells reach further
+    // (a flat platen's one cell layer is a face wide across its plane), so this test, not the
+    // cell index, turns away the particles behind it.
+    const double slack = 0.02 * prm_.radius;
+    if (!prm_.convex_master &&
+        (x[0] > grid_top_[0] + slack || x[1] > grid_top_[1] + slack || x[2] > grid_top_[2] + slack))
+      return best;
     int idx[3];
     for (int d = 0; d < 3; ++d)
     {
@@ -170,8 +179,7 @@ namespace coupling
       // iteration's tolerance). A convex master also uses faces the particle is clear of.
       if (!prm_.convex_master)
       {
-        const auto &b      = face_box_[f];
-        const double slack = 0.02 * prm_.radius;
+        const auto &b = face_box_[f];
         if (p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack ||
             p[0] > b[3] + slack || p[1] > b[4] + slack || p[2] > b[5] + slack)
           continue;

@@ -188,6 +188,7 @@ namespace coupling
     std::vector<double> node_weight_; ///< kinematic: per node, the sum of its contact weights
     // uniform grid of face bounding boxes
     std::array<double, 3> grid_origin_{};
+    std::array<double, 3> grid_top_{}; // the upper corner of the faces' inflated boxes
     double grid_cell_ = 1.0;
     std::array<int, 3> grid_n_{};
     std::vector<int> cell_start_, cell_faces_;
