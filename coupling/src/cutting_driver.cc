@@ -456,6 +456,7 @@ namespace coupling
   Summary CuttingDriver::run(RunObserver &observer, const StateArrays *resume)
   {
     const auto wall_start      = std::chrono::steady_clock::now();
+    const double wait_start    = domain_ ? domain_->wait_seconds() : 0.0;
     const double row_interval  = t_end_ / std::max(1, prm_.output.n_history_rows);
     const double snap_interval = t_end_ / std::max(1, prm_.output.n_snapshots);
     RunSchedule schedule;
@@ -563,7 +564,7 @@ namespace coupling
           chip += volume0_[i];
       const std::vector<double> all = domain_->sum({chip, n_released, released_energy, n_contact});
       chip = all[0], n_released = all[1], released_energy = all[2], n_contact = all[3];
-      report_split(*domain_, force_on_cutter_.size(), s);
+      report_split(*domain_, force_on_cutter_.size(), wait_start, s);
     }
     else
     {

@@ -87,8 +87,14 @@ namespace coupling
     return part;
   }
 
-  void report_split(const sph::Domain &domain, const std::size_t n_summed, Summary &s)
+  void report_split(const sph::Domain &domain, const std::size_t n_summed,
+                    const double wait_before, Summary &s)
   {
+    // each rank's time in the exchanges and collectives since wait_before (its wait_seconds
+    // when the run loop began): the slowest rank waits least
+    const std::vector<double> waits = domain.all_gather({domain.wait_seconds() - wait_before});
+    s.extra.push_back({"mpi_wait_seconds_min", *std::min_element(waits.begin(), waits.end())});
+    s.extra.push_back({"mpi_wait_seconds_max", *std::max_element(waits.begin(), waits.end())});
     // a step's two exchanges per refreshed ghost: position and velocity (exchange_ghosts), and
     // P L, F, stress and density (compute_forces)
     constexpr int halo_doubles_per_ghost = 6 + 9 + 9 + 9 + 1;

@@ -581,8 +581,7 @@ namespace coupling
     tail[4] = contact_top_->normal_force();
     tail[5] = contact_bottom_->normal_force();
     tail[6] = pressure_work_pending_;
-    MPI_Allreduce(MPI_IN_PLACE, buffer.data(), static_cast<int>(buffer.size()), MPI_DOUBLE, MPI_SUM,
-                  domain_->comm());
+    domain_->sum_in_place(buffer.data(), static_cast<int>(buffer.size()));
     std::copy(buffer.begin(), buffer.begin() + nt, force_on_top_.begin());
     std::copy(buffer.begin() + nt, buffer.begin() + nt + nb, force_on_bottom_.begin());
     normal_top_    = tail[4];
@@ -811,7 +810,8 @@ namespace coupling
 
   Summary SpecimenDriver::run(RunObserver &observer, const StateArrays *resume)
   {
-    const auto wall_start = std::chrono::steady_clock::now();
+    const auto wall_start  = std::chrono::steady_clock::now();
+    const double wait_start = domain_ ? domain_->wait_seconds() : 0.0;
     const double t_plan =
       plan_.confinement_time + plan_.ramp_time * 0.5 + plan_.planned_strain / plan_.strain_rate;
     const double t_end =
@@ -947,7 +947,7 @@ namespace coupling
     }
     failure_->report(*body_, s, domain_.get());
     if (domain_) // (the sum of the contact forces: both platens' and 7 more)
-      report_split(*domain_, force_on_top_.size() + force_on_bottom_.size() + 7, s);
+      report_split(*domain_, force_on_top_.size() + force_on_bottom_.size() + 7, wait_start, s);
     s.quasi_static = max_ratio <= prm_.loading.max_kinetic_ratio &&
                      max_imbalance <= prm_.loading.max_force_imbalance;
     s.wall_seconds =

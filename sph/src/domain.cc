@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -11,6 +12,26 @@ namespace sph
 {
   namespace
   {
+    // adds the wall-clock time of its scope to a total [s]
+    class Stopwatch
+    {
+    public:
+      explicit Stopwatch(double &total)
+          : total_(total)
+          , start_(std::chrono::steady_clock::now())
+      {}
+      ~Stopwatch()
+      {
+        total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      }
+      Stopwatch(const Stopwatch &)            = delete;
+      Stopwatch &operator=(const Stopwatch &) = delete;
+
+    private:
+      double                               &total_;
+      std::chrono::steady_clock::time_point start_;
+    };
+
     template <int dim>
     void bisect(const std::vector<Vector<dim>> &x, std::vector<std::int32_t> &ids,
                 const std::size_t begin, const std::size_t end, const int first_part,
@@ -245,8 +266,11 @@ namespace sph
                         comm_, &requests[n_peers + p]),
               "MPI_Isend");
       }
-    check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
-          "MPI_Waitall");
+    {
+      const Stopwatch watch(wait_seconds_);
+      check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+            "MPI_Waitall");
+    }
     for (std::size_t p = 0; p < n_peers; ++p)
       {
         const double *i = in[p].data();
@@ -273,6 +297,7 @@ namespace sph
     for (int r = 1; r < n_ranks_; ++r)
       displ[r] = displ[r - 1] + counts[r - 1];
     std::vector<double> all(n_global_ * width);
+    const Stopwatch     watch(wait_seconds_);
     check(MPI_Allgatherv(owned_rows, counts[rank_], MPI_DOUBLE, all.data(), counts.data(),
                          displ.data(), MPI_DOUBLE, comm_),
           "MPI_Allgatherv");
@@ -307,6 +332,7 @@ namespace sph
   {
     const int           n = static_cast<int>(values.size());
     std::vector<double> all(static_cast<std::size_t>(n) * n_ranks_);
+    const Stopwatch     watch(wait_seconds_);
     check(MPI_Allgather(values.data(), n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, comm_),
           "MPI_Allgather");
     return all;
@@ -325,16 +351,24 @@ namespace sph
 
   double Domain::min(const double value) const
   {
-    double m = value;
+    double          m = value;
+    const Stopwatch watch(wait_seconds_);
     check(MPI_Allreduce(&value, &m, 1, MPI_DOUBLE, MPI_MIN, comm_), "MPI_Allreduce");
     return m;
   }
 
   double Domain::max(const double value) const
   {
-    double m = value;
+    double          m = value;
+    const Stopwatch watch(wait_seconds_);
     check(MPI_Allreduce(&value, &m, 1, MPI_DOUBLE, MPI_MAX, comm_), "MPI_Allreduce");
     return m;
+  }
+
+  void Domain::sum_in_place(double *values, const int n) const
+  {
+    const Stopwatch watch(wait_seconds_);
+    check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, comm_), "MPI_Allreduce");
   }
 
   template std::vector<int> bisection_owners<2>(const std::vector<Vector<2>> &, int);

@@ -94,6 +94,13 @@ namespace sph
     /// Minimum and maximum over the ranks.
     double min(double value) const;
     double max(double value) const;
+    /// `values` (`n` entries, the same count on every rank) replaced by their sum over the ranks:
+    /// one MPI_Allreduce (the order of the sum is MPI's: exact for two ranks).
+    void sum_in_place(double *values, int n) const;
+
+    /// Wall-clock seconds this rank has spent waiting for the exchanges (after posting them) and
+    /// inside the collectives above: latency, transfer and the wait for slower ranks.
+    double wait_seconds() const { return wait_seconds_; }
 
   private:
     // the send and receive lists of the ghosts flagged in `needed` (one flag per local particle)
@@ -112,5 +119,6 @@ namespace sph
     // gather: every rank's owned global indices (concatenated in rank order) and counts
     std::vector<std::int32_t> all_owned_;
     std::vector<int>          owned_counts_;
+    mutable double            wait_seconds_ = 0;
   };
 } // namespace sph
