@@ -125,6 +125,17 @@ namespace coupling
     const auto &owned = domain.owned_indices();
     const auto &x     = body.positions();
     const auto &v     = body.velocities();
+    // owned particles in one run of local indices (a cut across the lattice's slowest index,
+    // as the UCS cylinder's on 2 ranks): the body's own rows, nothing copied
+    if (!owned.empty() &&
+        owned.back() - owned.front() + 1 == static_cast<std::int32_t>(owned.size()))
+    {
+      const std::size_t b = static_cast<std::size_t>(owned.front());
+      ContactParticles particles{x[b].data(), v[b].data(), body.masses().data() + b, owned.size()};
+      if (force)
+        particles.force = force->data() + 3 * b;
+      return particles;
+    }
     f_.resize(force ? x_.size() : 0);
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int d = 0; d < 3; ++d)

@@ -93,7 +93,9 @@ namespace coupling
     /// Takes the owned particles' masses [kg] (fixed).
     void reset(const sph::Body<3> &body, const sph::Domain &domain);
     /// The owned particles' current positions and velocities; with `force` (3 per local
-    /// particle [N]), theirs of it as ContactParticles::force. Valid until the next pack.
+    /// particle [N]), theirs of it as ContactParticles::force. Valid until the next pack (and
+    /// while the body's arrays stay in place: owned particles in one run of local indices are
+    /// not copied but pointed at).
     ContactParticles pack(const sph::Body<3> &body, const sph::Domain &domain,
                           const std::vector<double> *force = nullptr);
 
