@@ -323,8 +323,13 @@ namespace coupling
       std::vector<Contact> &mine = contacts_[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
-        Hit hit           = find_face(pt.position + 3 * i, s);
         FrictionState &fr = friction_[i];
+        if (surely_clear(pt.position + 3 * i))
+        {
+          fr = FrictionState{};
+          continue;
+        }
+        Hit hit = find_face(pt.position + 3 * i, s);
         if (hit.face < 0 || hit.gap >= 0)
         {
           fr = FrictionState{};

@@ -61,8 +61,13 @@ namespace coupling
       std::vector<Candidate> &motion = predicted[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
-        const Hit hit     = find_face(pt.position + 3 * i, s);
         FrictionState &fr = friction_[i];
+        if (surely_clear(pt.position + 3 * i))
+        {
+          fr = FrictionState{};
+          continue;
+        }
+        const Hit hit = find_face(pt.position + 3 * i, s);
         if (hit.face < 0)
         {
           fr = FrictionState{};

@@ -163,6 +163,19 @@ namespace coupling
       double dissipated   = 0;        ///< friction work of this apply() [J]
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
+    /// Whether find_face surely finds no face for the particle at `x` (a test of a few
+    /// comparisons, inline: most particles of a specimen are far from either platen, and the
+    /// call alone cost them more than their forces).
+    bool surely_clear(const double *x) const
+    {
+      // below the grid's lower corner: find_face's cell index is negative
+      if (x[0] < grid_origin_[0] || x[1] < grid_origin_[1] || x[2] < grid_origin_[2])
+        return true;
+      // a flat or concave master: beyond every inflated face box (find_face's first test)
+      const double slack = 0.02 * prm_.radius;
+      return !prm_.convex_master &&
+             (x[0] > grid_top_[0] + slack || x[1] > grid_top_[1] + slack || x[2] > grid_top_[2] + slack);
+    }
     /// apply() of ContactMethod::kinematic (kinematic_contact.cc).
     std::size_t apply_kinematic(const ContactParticles &particles, const ContactSurface &surface, double dt,
                                 std::vector<double> &force_on_particles, std::vector<double> &force_on_nodes);
