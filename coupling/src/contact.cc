@@ -152,12 +152,11 @@ namespace coupling
     Hit best;
     // a flat or concave master takes only faces whose inflated box (with the slack below) holds
     // the particle: beyond the boxes' upper corner none does. The grid's last cells reach further
-    // (a flat platen's one cell layer is a face wide across its plane), so this test, not the
+    // (a flat platen's one cell layer is a face wide across its plane), so surely_clear, not the
     // cell index, turns away the particles behind it.
-    const double slack = 0.02 * prm_.radius;
-    if (!prm_.convex_master &&
-        (x[0] > grid_top_[0] + slack || x[1] > grid_top_[1] + slack || x[2] > grid_top_[2] + slack))
+    if (surely_clear(x))
       return best;
+    const double slack = 0.02 * prm_.radius;
     int idx[3];
     for (int d = 0; d < 3; ++d)
     {

@@ -171,7 +171,7 @@ namespace coupling
       // below the grid's lower corner: find_face's cell index is negative
       if (x[0] < grid_origin_[0] || x[1] < grid_origin_[1] || x[2] < grid_origin_[2])
         return true;
-      // a flat or concave master: beyond every inflated face box (find_face's first test)
+      // a flat or concave master: beyond every inflated face box, with find_face's slack
       const double slack = 0.02 * prm_.radius;
       return !prm_.convex_master &&
              (x[0] > grid_top_[0] + slack || x[1] > grid_top_[1] + slack || x[2] > grid_top_[2] + slack);
