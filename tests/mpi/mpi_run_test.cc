@@ -257,6 +257,15 @@ namespace
         owned += c.get<std::size_t>();
       }
       EXPECT_EQ(owned, s["n_particles"].get<std::size_t>()); // each particle owned once
+      if (n > 1)
+      {
+        // the ranks' waits are parts of the run loop, which wall_seconds contains: a wait counted
+        // outside it (set-up, output after the loop) or twice could exceed it
+        const double least = m["mpi_wait_seconds_min"], most = m["mpi_wait_seconds_max"];
+        EXPECT_GE(least, 0.0);
+        EXPECT_LE(least, most);
+        EXPECT_LE(most, m["wall_seconds"].get<double>());
+      }
     }
     return s;
   }
