@@ -77,10 +77,11 @@ namespace coupling
 
   /// Distributed runs: the particles each rank owns (Summary::particles_per_rank) and what the
   /// split costs, as summary extras: ghosts held per particle of the body (ghost_fraction), the
-  /// bytes each step's halo exchange sends (positions and velocities of every ghost) and the
-  /// bytes each rank adds to the step's one sum of the contact forces, `n_summed` doubles; and the
-  /// least and most time a rank spent in the exchanges and collectives since it had waited
-  /// `wait_before` seconds (sph::Domain::wait_seconds; mpi_wait_seconds_min/_max). Collective.
+  /// bytes a step's two halo exchanges send (positions and velocities; P L, F, stress and density
+  /// of each refreshed ghost) and the bytes each rank adds to the step's one sum of the contact
+  /// forces, `n_summed` doubles; and the least and most time a rank spent in the exchanges and
+  /// collectives since it had waited `wait_before` seconds (sph::Domain::wait_seconds;
+  /// mpi_wait_seconds_min/_max). Collective.
   void report_split(const sph::Domain &domain, std::size_t n_summed, double wait_before,
                     Summary &s);
 
