@@ -279,7 +279,14 @@ namespace coupling
       // (a convex master keeps the faces the particle is clear of: the largest plane distance
       // decides, and one face plane the particle is more than r in front of separates it from the
       // whole body)
-      if (distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > prm_.radius))
+      // The kinematic method also needs the particles in front of the face (gap > 0) that the
+      // step may bring into it, and above all the ones it left exactly on the face at the last
+      // step (gap 0 to round-off): cut at gap > 0, such a particle was found on one step and
+      // missed on the next, flew into the face with a whole step of its internal force and was
+      // thrown back: energy from nothing at every platen-mesh vertex line (a 2.5 mm elastic UCS
+      // blew up). A step moves a particle far less than r (the CFL bound), so r of reach holds.
+      const double reach = prm_.method == ContactMethod::kinematic ? 2.0 * prm_.radius : prm_.radius;
+      if (distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > reach))
         continue;
       const double gap = distance - prm_.radius;
       Hit &slot = (!prm_.convex_master && (out_xi || out_eta)) ? across : best;

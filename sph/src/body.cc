@@ -416,15 +416,17 @@ namespace sph
             "restrict_to_owned: set_owned(domain.owned()) first");
     const std::size_t n = p_.size(), n_p = pairs_.n_pairs();
     // the stress of the owned particles only; what a step reads: the owned particles, the other
-    // particles of their pairs and the outer particles of their loaded-face columns
+    // particles of their pairs, and every member of a loaded-face column with an owned member
+    // (the outer particle's correction sums the members' stresses)
     read_ = owned_;
     for (std::size_t p = 0; p < n_p; ++p)
       if (owned_[pairs_.first[p]] || owned_[pairs_.second[p]])
         read_[pairs_.first[p]] = read_[pairs_.second[p]] = 1;
     for (const FaceColumn &column : face_columns_)
-      for (const unsigned int k : column.members)
-        if (owned_[k])
-          read_[column.members.front()] = 1;
+      if (std::any_of(column.members.begin(), column.members.end(),
+                      [&](const unsigned int k) { return owned_[k] != 0; }))
+        for (const unsigned int k : column.members)
+          read_[k] = 1;
     domain.restrict_exchange(read_);
     // the pairs with an owned particle, in their order, with their cached data
     constexpr int pair_size = pair_kernel::mixed::pair_size;

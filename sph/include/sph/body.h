@@ -141,10 +141,12 @@ namespace sph
     /// about (1.46, -0.41, -0.04) dx^2 from the surface inwards (cubic spline, CSLH 1.2), so a
     /// contact load on the outer layer alone leaves that layer at ~0.6 of the bulk stress, and it
     /// yields first. From then on the normal parts of s_k in each column (the particles within
-    /// two support radii of the face whose positions across n agree to 1e-3 spacings) are moved to the column's outer particle o, with o's
-    /// stress: f_k += P_o ds_k, ds_k = -(n.s_k) n (k != o), ds_o = sum_{k != o} (n.s_k) n. The
-    /// corrections of a column sum to zero (momentum is kept exactly) and vanish inside; a
-    /// uniform stress is then in equilibrium with a load on the outer layer alone. They are
+    /// two support radii of the face whose positions across n agree to 1e-3 spacings) are moved to the column's outer particle o, each
+    /// with its own stress: f_k += P_k ds_k, ds_k = -(n.s_k) n (k != o), f_o -= sum_{k != o}
+    /// P_k ds_k. The corrections of a column sum to zero (momentum is kept exactly) and vanish
+    /// inside; a uniform stress is then in equilibrium with a load on the outer layer alone, and
+    /// a member's correction depends on its own state only (with o's stress for every member, an
+    /// exact constraint on o fed an oscillation). They are
     /// part of `pressure_forces()` and their work is counted as external work. Returns the
     /// number of particles in the face's columns. Throws std::invalid_argument for |n| = 0 (or
     /// not finite) and when the face's columns overlap those of an earlier loaded face.
