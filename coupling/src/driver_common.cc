@@ -521,6 +521,20 @@ namespace coupling
     return s;
   }
 
+  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, const double dt, const int n_substeps)
+  {
+    ContactSurface s = contact_surface(platen);
+    if (platen.is_rigid())
+      return s;
+    const double c              = (n_substeps + 1) / (2.0 * n_substeps);
+    const std::vector<double> a = platen.contact_free_accelerations();
+    for (std::size_t i = 0; i < s.velocity.size(); ++i)
+      s.velocity[i] += dt * c * a[i];
+    for (double &m : s.mass)
+      m /= c;
+    return s;
+  }
+
   void append_history_row(std::vector<double> &out, const HistoryRow &r, const std::size_t width)
   {
     const double all[] = {r.time,

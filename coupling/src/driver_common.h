@@ -148,6 +148,17 @@ namespace coupling
   /// mirrored unchanged (a rigid body's nodes with zero mass).
   ContactSurface contact_surface(const fem::SteelBody &platen);
 
+  /// The surface as the kinematic constraint needs it for a coupled step dt that the body takes
+  /// in n_substeps sub-steps with the contact force held: the node velocities are the mean
+  /// velocities of the body's free motion over the step, v + dt a (n + 1) / (2 n) with a its own
+  /// acceleration (fem::SteelBody::contact_free_accelerations()), and the node masses are scaled
+  /// by 2 n / (n + 1), so that a force F held over the sub-steps moves a node by dt^2 F / m as the
+  /// rock's step moves a particle (central differences: x_n = x + dt v + dt^2 (a + F / m)
+  /// (n + 1) / (2 n)). Without the body's own acceleration the constraint ignores the face's
+  /// elastic push-back and the rock ends each step inside a loaded elastic platen. Rigid bodies:
+  /// contact_surface().
+  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, double dt, int n_substeps);
+
   /// History rows in a checkpoint: the first `width` fields of HistoryRow in declaration order
   /// (13: the laboratory tests, without the cutting forces; 15: every field).
   void append_history_row(std::vector<double> &out, const HistoryRow &r, std::size_t width);

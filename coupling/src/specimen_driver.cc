@@ -469,12 +469,15 @@ namespace coupling
                                   std::min(1.0, time_ / plan_.confinement_time));
 
     // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
-    const ContactSurface s_top = contact_surface(*top_), s_bottom = contact_surface(*bottom_);
+    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
+    const ContactSurface s_top =
+      kinematic ? predicted_contact_surface(*top_, dt_, n_substeps_) : contact_surface(*top_);
+    const ContactSurface s_bottom =
+      kinematic ? predicted_contact_surface(*bottom_, dt_, n_substeps_) : contact_surface(*bottom_);
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
     ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
                                body_->n_particles()};
-    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
     if (kinematic)
     {
       // the force of this step before contact, to predict where the step ends

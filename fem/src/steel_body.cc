@@ -680,6 +680,29 @@ namespace fem
     return out;
   }
 
+  std::vector<double> SteelBody::contact_free_accelerations() const
+  {
+    const Impl &im = *impl_;
+    std::vector<double> out(3 * im.contact_nodes.size(), 0.0);
+    if (is_rigid())
+      return out;
+    const double beta = im.prm.stiffness_damping;
+    Vector<double> kv;
+    if (beta > 0.0)
+    {
+      kv.reinit(im.v.size());
+      im.K.vmult(kv, im.v);
+    }
+    for (std::size_t k = 0; k < im.contact_nodes.size(); ++k)
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        const std::size_t i = 3 * im.contact_nodes[k] + d;
+        if (!im.prescribed[i])
+          out[3 * k + d] = -(im.Ku[i] + (beta > 0.0 ? beta * kv[i] : 0.0)) / im.m_node[i / 3];
+      }
+    return out;
+  }
+
   std::vector<double> SteelBody::contact_masses() const
   {
     std::vector<double> out;

@@ -19,7 +19,7 @@ namespace
   constexpr double steel_E = 200e9, steel_rho = 7850.0;
 
   std::unique_ptr<fem::SteelBody> steel_box(double size_xy, double thickness, double element,
-                                         double poissons_ratio, bool free_body)
+                                            double poissons_ratio, bool free_body)
   {
     fem::BodyGeometry g;
     g.shape     = fem::BodyShape::box;
@@ -119,106 +119,142 @@ TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
             << final_energy_error << ", max exchange " << max_exchange << "\n";
 }
 
+namespace
+{
+  /// Transmission T and reflection R of a stress pulse at a steel -> rock interface, the incident
+  /// stress and the impedance theory's values.
+  struct Pulse
+  {
+    double incident, incident_theory, T, R, T_theory, R_theory;
+  };
+
+  /// rock_gauge_layers: where the rock's stress is read, in spacings from the interface; 0 = three
+  /// quarters of the pulse length in (clear of the interface's near field)
+  Pulse pulse_through_interface(const double tau, const double scale, const ContactMethod method,
+                                const int rock_gauge_layers = 0)
+  {
+    // A 4 x 4 mm steel bar (FEM) on a 4 x 4 mm rock bar (SPH), end to end at z = 0. Poisson's ratio
+    // 0 in both makes the bars exactly one-dimensional (no lateral inertia, no dispersion from
+    // it): the 1-D theory holds without a bar correction. A sin^2 velocity pulse of duration tau
+    // enters at the steel's far end and is measured in both bars, clear of all other reflections.
+    const double dx = 1e-3, a = 4e-3, v0 = 0.1;
+    const double Z1 = std::sqrt(steel_E * steel_rho), Z2 = std::sqrt(rock_E * rock_rho);
+    const double c1 = std::sqrt(steel_E / steel_rho), c2 = std::sqrt(rock_E / rock_rho);
+    const double T_theory = 2 * Z2 / (Z1 + Z2), R_theory = (Z2 - Z1) / (Z1 + Z2);
+    // steel gauge d_s before the interface, steel bar 2 d_s; rock gauge d_r into the rock, rock bar
+    // long enough that the reflection from its free end comes back after the window
+    const double d_s = dx * std::ceil(1.25 * c1 * tau / dx);
+    const double d_r =
+      rock_gauge_layers > 0 ? dx * rock_gauge_layers : dx * std::ceil(0.75 * c2 * tau / dx);
+    const double L_r = d_r + dx * std::ceil(c2 * tau / dx);
+    auto rock =
+      rock_block({-0.5 * a, -0.5 * a, 0.0}, {0.5 * a, 0.5 * a, L_r}, dx, rock_E, 0.0, rock_rho);
+    auto steel = steel_box(a, 2 * d_s, dx, 0.0, false);
+    steel->set_loaded_face_velocity([&](double t) {
+      // pushes the loaded face (z = -2 d_s) up into the bar: compression
+      if (t <= 0 || t >= tau)
+        return 0.0;
+      const double s = std::sin(pi * t / tau);
+      return v0 * s * s;
+    });
+    TwoBody pair(std::move(rock), std::move(steel), scale, 0, 0, method);
+
+    // gauges: steel stress at z = -d_s from the node layers one element either side; rock stress
+    // at z = d_r from the two particle layers either side
+    const auto x0 = pair.platen().reference_positions();
+    std::vector<unsigned int> s_hi, s_lo, r_gauge;
+    for (unsigned int n = 0; n < x0.size() / 3; ++n)
+    {
+      if (std::abs(x0[3 * n + 2] + d_s - dx) < 1e-3 * dx)
+        s_hi.push_back(n);
+      if (std::abs(x0[3 * n + 2] + d_s + dx) < 1e-3 * dx)
+        s_lo.push_back(n);
+    }
+    const auto &xr = pair.rock().reference_positions();
+    for (unsigned int i = 0; i < xr.size(); ++i)
+      if (std::abs(xr[i][2] - d_r) < 0.6 * dx)
+        r_gauge.push_back(i);
+    EXPECT_EQ(s_hi.size(), 25u);
+    EXPECT_EQ(s_lo.size(), 25u);
+    EXPECT_EQ(r_gauge.size(), 32u);
+
+    auto steel_stress = [&] { // tension +
+      const auto u = pair.platen().mesh_snapshot().displacement;
+      double hi = 0, lo = 0;
+      for (unsigned int n : s_hi)
+        hi += u[3 * n + 2] / s_hi.size();
+      for (unsigned int n : s_lo)
+        lo += u[3 * n + 2] / s_lo.size();
+      return steel_E * (hi - lo) / (2 * dx);
+    };
+    auto rock_stress = [&] {
+      double s = 0;
+      for (unsigned int i : r_gauge)
+        s += pair.rock().stress3(i)(2, 2) / r_gauge.size();
+      return s;
+    };
+
+    // windows (arrival of the pulse's front to its tail, with a margin): incident at the steel
+    // gauge, reflected back at it, transmitted at the rock gauge
+    const double margin = 0.25 * tau;
+    const double t_inc0 = d_s / c1, t_ref0 = 3 * d_s / c1, t_tr0 = 2 * d_s / c1 + d_r / c2;
+    const double t_end = t_ref0 + tau + margin;
+    EXPECT_LT(t_end, 5 * d_s / c1) << "the reflection from the loaded end must not reach the gauge";
+    double incident = 0, reflected = 0, transmitted = 0;
+    while (pair.time() < t_end)
+    {
+      pair.step();
+      const double t = pair.time();
+      if (t > t_inc0 && t < t_inc0 + tau + margin)
+        incident = std::min(incident, steel_stress()); // compression: negative
+      if (t > t_ref0 && t < t_ref0 + tau + margin)
+      {
+        const double s = steel_stress();
+        reflected      = std::abs(s) > std::abs(reflected) ? s : reflected;
+      }
+      if (t > t_tr0 && t < t_tr0 + tau + margin)
+        transmitted = std::min(transmitted, rock_stress());
+    }
+    const double T = transmitted / incident, R = reflected / incident;
+    std::cout << "[pulse] tau " << tau
+              << (method == ContactMethod::kinematic ? " kinematic" : " penalty") << " scale "
+              << scale << " sigma_I " << incident << " Pa (theory " << -Z1 * v0 << "), T " << T
+              << " (theory " << T_theory << "), R " << R << " (theory " << R_theory
+              << "), n_substeps " << pair.n_substeps() << ", k " << pair.stiffness() << " N/m\n";
+    return {incident, -Z1 * v0, T, R, T_theory, R_theory};
+  }
+} // namespace
+
 TEST(CoupledWave, PulseCrossesSteelRockInterfaceAsImpedanceTheorySays)
 {
-  // A 4 x 4 mm steel bar (FEM) on a 4 x 4 mm rock bar (SPH), end to end at z = 0. Poisson's ratio
-  // 0 in both makes the bars exactly one-dimensional (no lateral inertia, no dispersion from
-  // it): the 1-D theory holds without a bar correction. A sin^2 velocity pulse of duration tau
-  // enters at the steel's far end and is measured in both bars, clear of all other reflections.
-  const double dx = 1e-3, a = 4e-3, v0 = 0.1;
   // The penalty layer is a spring of stiffness kappa per area between the bars: transparent
   // for pulses much longer than its time constant Z1 Z2 / ((Z1 + Z2) kappa). At the driver's
   // default stiffness (0.1 of the bound, limited by the lightest corner node) that constant is
   // about 1.4 us and a 4 us pulse comes through at T = 0.38, R = -0.73 (measured); at 0.5 of the
   // bound (0.28 us) an 8 us pulse gives T, R within 4 % and 2 % of the theory.
-  const double tau = 8e-6, scale = 0.5;
-  const double Z1 = std::sqrt(steel_E * steel_rho), Z2 = std::sqrt(rock_E * rock_rho);
-  const double c1 = std::sqrt(steel_E / steel_rho), c2 = std::sqrt(rock_E / rock_rho);
-  const double T_theory = 2 * Z2 / (Z1 + Z2), R_theory = (Z2 - Z1) / (Z1 + Z2);
-  // steel gauge d_s before the interface, steel bar 2 d_s; rock gauge d_r into the rock, rock bar
-  // long enough that the reflection from its free end comes back after the window
-  const double d_s = dx * std::ceil(1.25 * c1 * tau / dx);
-  const double d_r = dx * std::ceil(0.75 * c2 * tau / dx);
-  const double L_r = d_r + dx * std::ceil(c2 * tau / dx);
-  auto rock =
-    rock_block({-0.5 * a, -0.5 * a, 0.0}, {0.5 * a, 0.5 * a, L_r}, dx, rock_E, 0.0, rock_rho);
-  auto steel = steel_box(a, 2 * d_s, dx, 0.0, false);
-  steel->set_loaded_face_velocity([&](double t) {
-    // pushes the loaded face (z = -2 d_s) up into the bar: compression
-    if (t <= 0 || t >= tau)
-      return 0.0;
-    const double s = std::sin(pi * t / tau);
-    return v0 * s * s;
-  });
-  TwoBody pair(std::move(rock), std::move(steel), scale);
-
-  // gauges: steel stress at z = -d_s from the node layers one element either side; rock stress
-  // at z = d_r from the two particle layers either side
-  const auto x0 = pair.platen().reference_positions();
-  std::vector<unsigned int> s_hi, s_lo, r_gauge;
-  for (unsigned int n = 0; n < x0.size() / 3; ++n)
-  {
-    if (std::abs(x0[3 * n + 2] + d_s - dx) < 1e-3 * dx)
-      s_hi.push_back(n);
-    if (std::abs(x0[3 * n + 2] + d_s + dx) < 1e-3 * dx)
-      s_lo.push_back(n);
-  }
-  const auto &xr = pair.rock().reference_positions();
-  for (unsigned int i = 0; i < xr.size(); ++i)
-    if (std::abs(xr[i][2] - d_r) < 0.6 * dx)
-      r_gauge.push_back(i);
-  ASSERT_EQ(s_hi.size(), 25u);
-  ASSERT_EQ(s_lo.size(), 25u);
-  ASSERT_EQ(r_gauge.size(), 32u);
-
-  auto steel_stress = [&] { // tension +
-    const auto u = pair.platen().mesh_snapshot().displacement;
-    double hi = 0, lo = 0;
-    for (unsigned int n : s_hi)
-      hi += u[3 * n + 2] / s_hi.size();
-    for (unsigned int n : s_lo)
-      lo += u[3 * n + 2] / s_lo.size();
-    return steel_E * (hi - lo) / (2 * dx);
-  };
-  auto rock_stress = [&] {
-    double s = 0;
-    for (unsigned int i : r_gauge)
-      s += pair.rock().stress3(i)(2, 2) / r_gauge.size();
-    return s;
-  };
-
-  // windows (arrival of the pulse's front to its tail, with a margin): incident at the steel
-  // gauge, reflected back at it, transmitted at the rock gauge
-  const double margin = 0.25 * tau;
-  const double t_inc0 = d_s / c1, t_ref0 = 3 * d_s / c1, t_tr0 = 2 * d_s / c1 + d_r / c2;
-  const double t_end = t_ref0 + tau + margin;
-  ASSERT_LT(t_end, 5 * d_s / c1) << "the reflection from the loaded end must not reach the gauge";
-  double incident = 0, reflected = 0, transmitted = 0;
-  while (pair.time() < t_end)
-  {
-    pair.step();
-    const double t = pair.time();
-    if (t > t_inc0 && t < t_inc0 + tau + margin)
-      incident = std::min(incident, steel_stress()); // compression: negative
-    if (t > t_ref0 && t < t_ref0 + tau + margin)
-    {
-      const double s = steel_stress();
-      reflected      = std::abs(s) > std::abs(reflected) ? s : reflected;
-    }
-    if (t > t_tr0 && t < t_tr0 + tau + margin)
-      transmitted = std::min(transmitted, rock_stress());
-  }
-  const double T = transmitted / incident, R = reflected / incident;
-  std::cout << "[pulse] tau " << tau << " scale " << scale << " sigma_I " << incident
-            << " Pa (theory " << -Z1 * v0 << "), T " << T << " (theory " << T_theory << "), R " << R
-            << " (theory " << R_theory << "), n_substeps " << pair.n_substeps() << ", k "
-            << pair.stiffness() << " N/m\n";
+  const Pulse p = pulse_through_interface(8e-6, 0.5, ContactMethod::penalty);
   // the incident pulse itself: rho c v0 in a 1-D bar. 2 %: the lumped-mass Q1 mesh has 20 or
   // more elements per pulse length, its dispersion lowers the peak by under 1 %
-  EXPECT_NEAR(incident / (-Z1 * v0), 1.0, 0.02);
-  // 5 %: the tolerance. Error sources: the penalty layer (a spring in series with the
-  // interface, which a pulse much longer than its time constant sees as rigid), SPH and FEM
-  // dispersion
-  EXPECT_NEAR(T / T_theory, 1.0, 0.05);
-  EXPECT_NEAR(R / R_theory, 1.0, 0.05);
+  EXPECT_NEAR(p.incident / p.incident_theory, 1.0, 0.02);
+  // 5 %: the tolerance for a penalty interface. Error sources: the penalty layer (a spring in
+  // series with the interface, which a pulse much longer than its time constant sees as rigid),
+  // SPH and FEM dispersion
+  EXPECT_NEAR(p.T / p.T_theory, 1.0, 0.05);
+  EXPECT_NEAR(p.R / p.R_theory, 1.0, 0.05);
+}
+
+TEST(CoupledWave, KinematicInterfaceTransmitsAsImpedanceTheorySays)
+{
+  // The kinematic constraint has no spring: the interface itself is rigid, so a pulse half as
+  // long as the penalty test's (4 us, which the default penalty layer passes at T = 0.38) must
+  // cross as the impedances say. The rock's stress is read three spacings from the interface: the
+  // artificial viscosity of SPH attenuates a 4 us pulse by several per cent over the penalty
+  // test's 17 mm, which is the rock's property, not the interface's (at 8 us and 34 mm: T 0.575,
+  // -3.4 %, while 1 + R = 0.598 holds continuity). 3 %: the interface's tolerance; measured T
+  // -0.3 %, R -2.0 % (FEM dispersion of the 4 us pulse, about 20 steel elements per length;
+  // -0.6 % at 8 us)
+  const Pulse p = pulse_through_interface(4e-6, 0.0, ContactMethod::kinematic, 3);
+  EXPECT_NEAR(p.incident / p.incident_theory, 1.0, 0.02);
+  EXPECT_NEAR(p.T / p.T_theory, 1.0, 0.03);
+  EXPECT_NEAR(p.R / p.R_theory, 1.0, 0.03);
 }

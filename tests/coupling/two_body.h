@@ -1,5 +1,6 @@
 #pragma once
-// Test fixture: one SPH rock body and one FEM body (fem::SteelBody) coupled through PenaltyContact,
+// Test fixture: one SPH rock body and one FEM body (fem::SteelBody) coupled through PenaltyContact
+// (penalty or kinematic),
 // stepped exactly as the UCS/BTS/CTCS driver steps them (coupling/src/specimen_driver.cc): contact
 // forces at the start of the step, SPH integrated with dt, the FEM body sub-cycled with dt/n and
 // the platen force held over the sub-steps, so that both sides receive the same impulse f dt.
@@ -36,13 +37,17 @@ namespace coupling::testing
     /// rock's stable step for the lightest particle against the lightest contact node (rigid: the
     /// particle alone), the step shortened by coupled_time_step(), as in the driver.
     TwoBody(std::unique_ptr<sph::Body<3>> rock, std::unique_ptr<fem::SteelBody> platen,
-            double contact_scale, double friction_static = 0, double friction_dynamic = 0)
+            double contact_scale, double friction_static = 0, double friction_dynamic = 0,
+            ContactMethod method = ContactMethod::penalty)
         : rock_(std::move(rock))
         , platen_(std::move(platen))
+        , method_(method)
     {
       const double dt_rock = rock_->stable_time_step();
-      dt_                  = coupled_time_step(dt_rock, contact_scale);
-      const double dt_fem  = platen_->stable_time_step();
+      // the kinematic constraint has no stiffness and adds no bound (contact_scale unused)
+      dt_ =
+        method == ContactMethod::kinematic ? dt_rock : coupled_time_step(dt_rock, contact_scale);
+      const double dt_fem = platen_->stable_time_step();
       n_sub_              = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
       const auto &m       = rock_->masses();
       const double m_p    = *std::min_element(m.begin(), m.end());
@@ -57,8 +62,11 @@ namespace coupling::testing
       cp.friction_static  = friction_static;
       cp.friction_dynamic = friction_dynamic;
       cp.radius           = 0.5 * rock_->parameters().spacing;
-      stiffness_          = cp.stiffness;
-      contact_            = std::make_unique<PenaltyContact>(cp, rock_->n_particles());
+      cp.method           = method;
+      if (method == ContactMethod::kinematic)
+        cp.stiffness = 0;
+      stiffness_ = cp.stiffness;
+      contact_   = std::make_unique<PenaltyContact>(cp, rock_->n_particles());
       f_rock_.assign(3 * rock_->n_particles(), 0.0);
       f_platen_.assign(3 * platen_->n_contact_nodes(), 0.0);
     }
@@ -68,11 +76,23 @@ namespace coupling::testing
     void step(const std::function<void(sph::Body<3> &)> &extra = {})
     {
       rock_->compute_forces();
-      surface_      = contact_surface(*platen_);
+      const bool kinematic = method_ == ContactMethod::kinematic;
+      surface_ =
+        kinematic ? predicted_contact_surface(*platen_, dt_, n_sub_) : contact_surface(*platen_);
       const auto &x = rock_->positions();
       const auto &v = rock_->velocities();
-      const ContactParticles particles{x.front().data(), v.front().data(), rock_->masses().data(),
-                                       rock_->n_particles()};
+      ContactParticles particles{x.front().data(), v.front().data(), rock_->masses().data(),
+                                 rock_->n_particles()};
+      if (kinematic) // the force of the step before contact, as the driver predicts with it
+      {
+        const auto &fi = rock_->internal_forces(), &fp = rock_->pressure_forces();
+        const auto &fe = rock_->external_forces();
+        force_before_.resize(3 * rock_->n_particles());
+        for (unsigned int i = 0; i < rock_->n_particles(); ++i)
+          for (int d = 0; d < 3; ++d)
+            force_before_[3 * i + d] = fi[i][d] + fp[i][d] + fe[i][d];
+        particles.force = force_before_.data();
+      }
       std::fill(f_rock_.begin(), f_rock_.end(), 0.0);
       std::fill(f_platen_.begin(), f_platen_.end(), 0.0);
       n_contact_  = contact_->apply(particles, surface_, dt_, f_rock_, f_platen_);
@@ -119,7 +139,8 @@ namespace coupling::testing
     std::unique_ptr<fem::SteelBody> platen_;
     std::unique_ptr<PenaltyContact> contact_;
     ContactSurface surface_;
-    std::vector<double> f_rock_, f_platen_;
+    std::vector<double> f_rock_, f_platen_, force_before_;
+    ContactMethod method_ = ContactMethod::penalty;
     double dt_ = 0, time_ = 0, stiffness_ = 0;
     int n_sub_             = 1;
     std::size_t n_contact_ = 0;

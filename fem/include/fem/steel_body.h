@@ -70,6 +70,11 @@ namespace fem
     std::size_t n_contact_nodes() const;
     std::vector<double> contact_positions() const;  ///< current x0 + u [m], 3 per node
     std::vector<double> contact_velocities() const; ///< [m/s], 3 per node
+    /// Acceleration [m/s^2] of the contact nodes from the body's own forces at the current state,
+    /// M^-1 (-K u - beta K v), 3 per node: what the next step() adds to their velocity besides the
+    /// contact forces (0 for a rigid body and for prescribed dofs). A constraint contact predicts
+    /// with it where the face ends the step.
+    std::vector<double> contact_free_accelerations() const;
     /// Lumped nodal masses [kg] (also for a rigid platen; use is_rigid() to treat it as rigid).
     std::vector<double> contact_masses() const;
     /// Tributary areas of the contact nodes, integral of the shape function over the face [m^2].
