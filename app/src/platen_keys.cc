@@ -20,28 +20,27 @@ namespace app::keys
                                                 : "must not exceed the Friction coefficient (static, " +
                                                     format(pl.friction) + ")";
     });
-    s.add_enum("Contact method", pl.contact_method, "penalty|kinematic",
-               {coupling::ContactMethod::penalty, coupling::ContactMethod::kinematic},
-               "penalty spring (Contact stiffness scale) or kinematic constraint (no stiffness; "
-               "the predicted penetration removed each step; for studies of the interface: see docs/validation.md)");
+    s.add_enum("Contact method", pl.contact_method, "automatic|penalty|kinematic",
+               {coupling::ContactMethod::automatic, coupling::ContactMethod::penalty,
+                coupling::ContactMethod::kinematic},
+               "kinematic constraint (no stiffness: the step's penetration removed exactly, Coulomb "
+               "stick/slip), penalty spring (Contact stiffness scale), or automatic: kinematic for "
+               "UCS, BTS and CTCS, penalty for indentation and linear cutting");
     s.check("Contact method", [&p]() {
-      const coupling::PlatenParameters &pl = p.platens;
-      if (pl.contact_method != coupling::ContactMethod::kinematic)
+      if (p.platens.contact_method != coupling::ContactMethod::kinematic)
         return std::string();
-      if (p.test != "UCS" && p.test != "BTS" && p.test != "CTCS")
-        return "kinematic is for UCS, BTS and CTCS; " + p.test + " uses penalty";
-      return pl.contact_stiffness_scale == 0.1
+      return p.test == "UCS" || p.test == "BTS" || p.test == "CTCS"
                ? std::string()
-               : std::string("kinematic has no stiffness: leave Contact stiffness scale at its default (0.1, "
-                             "read by the penalty method only)");
+               : "kinematic is for UCS, BTS and CTCS; " + p.test + " uses penalty";
     });
     s.add_enum("Bonded", pl.bonded, "false|true", {false, true},
                "rock tied to the platen once touched (no slip, no separation; kinematic contact only)");
-    s.check("Bonded", [&pl]() {
+    s.check("Bonded", [&p]() {
+      const coupling::PlatenParameters &pl = p.platens;
       if (!pl.bonded)
         return std::string();
-      if (pl.contact_method != coupling::ContactMethod::kinematic)
-        return std::string("needs Contact method = kinematic");
+      if (coupling::contact_method(p) != coupling::ContactMethod::kinematic)
+        return std::string("needs the kinematic contact (Contact method = kinematic, or automatic for UCS, BTS, CTCS)");
       return pl.friction == 0 ? std::string() : std::string("a bonded interface has no friction; leave Friction coefficient 0");
     });
     s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
@@ -72,6 +71,14 @@ namespace app::keys
     s.add<double>("Contact stiffness scale", pl.contact_stiffness_scale,
                   "penalty stiffness / its stability bound at the rock step [-]; the step shrinks by sqrt(1 + s); 0.5 for stress waves",
                   [](double v) { return v > 0 && v <= 1; }, "must be in (0, 1]");
+    s.check("Contact stiffness scale", [&p]() {
+      // read by the penalty method only: a value set for a kinematic run would be ignored
+      if (coupling::contact_method(p) != coupling::ContactMethod::kinematic ||
+          p.platens.contact_stiffness_scale == 0.1)
+        return std::string();
+      return std::string("is read by the penalty contact only, and ") + p.test +
+             " runs the kinematic one: set Contact method = penalty to use it, or leave it at 0.1";
+    });
     s.add<double>("Frame stiffness", pl.frame_stiffness,
                   "load frame in series with the top platen [N/m]: the actuator moves at the loading rate, the platen by that minus F / k_frame, and the displacement is read at the actuator; 0 = a rigid frame",
                   [](double v) { return v >= 0 && v < 1e15; }, "must be in [0, 1e15) N/m (0 = a rigid frame; laboratory frames: about 1e8-1e10)");

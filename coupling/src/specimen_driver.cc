@@ -366,7 +366,7 @@ namespace coupling
     // inside the bound (coupled_time_step() gives the proof).
     // The kinematic constraint has no stiffness and adds no bound: the coupled step is the
     // rock's own.
-    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
+    const bool kinematic = contact_method(prm_) == ContactMethod::kinematic;
     const double s       = prm_.platens.contact_stiffness_scale;
     dt_                  = kinematic ? dt_sph : coupled_time_step(dt_sph, s * largest_factor);
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
@@ -393,7 +393,7 @@ namespace coupling
     cp.friction_static  = prm_.platens.friction;
     cp.friction_dynamic = prm_.platens.dynamic_friction < 0 ? prm_.platens.friction : prm_.platens.dynamic_friction;
     cp.radius           = contact_radius_;
-    cp.method           = prm_.platens.contact_method;
+    cp.method           = contact_method(prm_);
     cp.bonded           = prm_.platens.bonded;
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
@@ -469,7 +469,7 @@ namespace coupling
                                   std::min(1.0, time_ / plan_.confinement_time));
 
     // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
-    const bool kinematic = prm_.platens.contact_method == ContactMethod::kinematic;
+    const bool kinematic = contact_method(prm_) == ContactMethod::kinematic;
     const ContactSurface s_top =
       kinematic ? predicted_contact_surface(*top_, dt_, n_substeps_) : contact_surface(*top_);
     const ContactSurface s_bottom =

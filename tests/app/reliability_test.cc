@@ -408,6 +408,9 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
     {"SPH/Threads=-1", {"SPH/Threads", "[0, 4096]"}},
     {"Platens/Friction coefficient=-0.1", {"Platens/Friction coefficient", "[0, 2]"}},
     {"Platens/Contact stiffness scale=2", {"Platens/Contact stiffness scale"}},
+    // a penalty setting on the kinematic (default) interface would be read and ignored
+    {"Platens/Contact stiffness scale=0.4", {"Platens/Contact stiffness scale", "Contact method = penalty"}},
+    {"Platens/Contact method=spring", {"Platens/Contact method", "automatic, penalty, kinematic"}},
     {"Platens/Poissons ratio=0.5", {"Platens/Poissons ratio", "[0, 0.5)"}},
     {"Loading/End strain=0.9", {"Loading/End strain", "(0, 0.5]"}},
     {"Loading/Post-peak drop=1", {"Loading/Post-peak drop", "(0, 1)"}},

@@ -1,5 +1,5 @@
 // The coupled driver against closed forms: an elastic rock cylinder between rigid frictionless
-// platens (penalty contact, FEM rigid mode), measured as a laboratory does (gauges).
+// platens (the default interface, FEM rigid mode), measured as a laboratory does (gauges).
 #include "run_helpers.h"
 
 #include <coupling/run_case.h>
@@ -57,13 +57,12 @@ TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
   // 3 %: the SPH issue's tolerance for nu; the ring at mid-height sits half a spacing inside the
   // true surface, which the lattice's reference radius accounts for
   EXPECT_NEAR(s.poissons_ratio / 0.28, 1.0, 0.03);
-  // the platen-read modulus includes the two penalty layers: softer, but not by more than the
-  // contact compliance allows (k = 0.1 of the bound gives about 10 % per end at 2.5 mm)
-  EXPECT_LT(s.platen_modulus, s.youngs_modulus);
-  EXPECT_GT(s.platen_modulus, 0.6 * s.youngs_modulus);
-  // energy: the frame's work ends up as strain, kinetic and penalty energy. 5 %: central
-  // differences keep a shadow energy, and the hourglass and viscous terms dissipate a little
-  EXPECT_LT(s.energy_balance_error, 0.05);
+  // the platen-read modulus: the default (kinematic) interface has no compliance of its own;
+  // what the frame reads is checked in CoupledKinematic.ElasticUcsShowsNoInterfaceCompliance
+  // energy: the frame's work ends up as strain and kinetic energy. 1 %: the interface's target
+  // (measured 6e-4; central differences keep a shadow energy, and the hourglass and viscous
+  // terms dissipate a little)
+  EXPECT_LT(s.energy_balance_error, 0.01);
   // the two load cells agree once the specimen carries load (quasi-static loading). 0.1: a
   // guard against a dynamic (wave-dominated) run, twice the driver's own quasi-static limit
   // (Loading/Max force imbalance, default 0.05), so the test fails only on a gross loss of balance

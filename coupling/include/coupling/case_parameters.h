@@ -63,8 +63,9 @@ namespace coupling
     double friction = 0.0;        ///< Coulomb (static) friction coefficient rock-platen [-]
     /// dynamic (sliding) friction coefficient [-]; < 0: the same as `friction`
     double dynamic_friction = -1.0;
-    /// how the interface enforces contact: a penalty spring or the kinematic constraint
-    ContactMethod contact_method = ContactMethod::penalty;
+    /// how the interface enforces contact: a penalty spring, the kinematic constraint, or
+    /// automatic (the test's default: see contact_method())
+    ContactMethod contact_method = ContactMethod::automatic;
     /// kinematic only: the rock tied to the platen once touched (no slip, no separation)
     bool bonded = false;
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
@@ -143,4 +144,16 @@ namespace coupling
     OutputParameters output;
     CutterParameters cutter;         ///< indentation and linear-cutting only
   };
+  /// The interface a case runs with: Platens/Contact method, automatic resolved to kinematic for
+  /// UCS, BTS and CTCS (no stiffness to choose: the strengths, moduli and waves come out of the
+  /// rock and steel alone) and to penalty for indentation and linear cutting (the cutter drivers
+  /// have the penalty contact only).
+  inline ContactMethod contact_method(const CaseParameters &p)
+  {
+    if (p.platens.contact_method != ContactMethod::automatic)
+      return p.platens.contact_method;
+    return p.test == "UCS" || p.test == "BTS" || p.test == "CTCS" ? ContactMethod::kinematic
+                                                                  : ContactMethod::penalty;
+  }
+
 } // namespace coupling

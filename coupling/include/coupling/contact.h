@@ -61,9 +61,13 @@ namespace coupling
     penalty,
     /// the predicted penetration of the step removed exactly: per particle-face pair the normal
     /// force f_n = -m_eff g* / dt^2 (g* the gap the step would end with, m_eff the pair's
-    /// effective mass), and the tangential force that stops the relative sliding, limited to
-    /// mu f_n (Coulomb stick / slip); no stiffness, no added stability bound
+    /// effective mass; on a deformable face the pairs that share nodes solved together), and
+    /// the tangential force that stops the relative sliding, limited to mu f_n (Coulomb stick /
+    /// slip); no stiffness, no added stability bound
     kinematic,
+    /// a case's default (PlatenParameters::contact_method): kinematic for the specimen tests (UCS,
+    /// BTS, CTCS), penalty for the cutter tests; coupling::contact_method() resolves it
+    automatic,
   };
 
   struct ContactParameters
