@@ -41,8 +41,6 @@ run() {
     bts-tssfac)   study bts-tssfac $bts --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
     bts-form)     study bts-form $bts --key "SPH/FORM" --values 0,1,7,8 ;;
     bts-cslh)     study bts-cslh $bts --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
-    bts-platens)  study bts-platens $bts --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
-                    --key "Platens/Model" --values rigid,elastic ;;
     ucs-groups)   study ucs-groups $ucs --groups all ;;
     # the paper's 1 mm (197,600 particles): 20-40 min per group on this machine
     ucs-groups-1mm) study ucs-groups-1mm $ucs --set "SPH/Particle spacing=0.001" --groups all ;;
@@ -54,8 +52,16 @@ run() {
     ucs-tssfac)   study ucs-tssfac $ucs --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
     ucs-form)     study ucs-form $ucs --key "SPH/FORM" --values 0,1,7,8 ;;
     ucs-cslh)     study ucs-cslh $ucs --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
-    ucs-platens)  study ucs-platens $ucs --key "Platens/Friction coefficient" --values 0,0.1,0.3 \
-                    --key "Platens/Model" --values rigid,elastic ;;
+    # the platen study (cases/studies/platens/README.md): rigid and elastic steel, free slip,
+    # Coulomb friction and a bonded interface; UCS at L/D 1, 2 and 2.5
+    platens-ucs)  study platens-ucs $ucs --vary "Platens/Model=rigid,elastic" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
+    platens-ucs-bonded) study platens-ucs-bonded $ucs --set "Platens/Bonded=true" \
+                    --vary "Platens/Model=rigid,elastic" --vary "Test/Length=0.05,0.1,0.125" ;;
+    platens-bts)  study platens-bts $bts --vary "Platens/Model=rigid,elastic" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
+    platens-bts-bonded) study platens-bts-bonded $bts --set "Platens/Bonded=true" \
+                    --vary "Platens/Model=rigid,elastic" ;;
     # 5 mm (10 particles across): 18 runs in the time budget of a shared machine
     ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.005" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
@@ -63,8 +69,9 @@ run() {
   esac
 }
 
-all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh bts-platens
-     ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ucs-platens ctcs)
+all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
+     ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
+     platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
