@@ -120,7 +120,8 @@ namespace coupling
   }
 
   ContactParticles OwnedParticles::pack(const sph::Body<3> &body, const sph::Domain &domain,
-                                        const std::vector<double> *force)
+                                        const std::vector<double> *force,
+                                        const std::vector<double> *deformation)
   {
     const auto &owned = domain.owned_indices();
     const auto &x     = body.positions();
@@ -134,9 +135,16 @@ namespace coupling
       ContactParticles particles{x[b].data(), v[b].data(), body.masses().data() + b, owned.size()};
       if (force)
         particles.force = force->data() + 3 * b;
+      if (deformation)
+        particles.deformation = deformation->data() + 9 * b;
       return particles;
     }
     f_.resize(force ? x_.size() : 0);
+    F_.resize(deformation ? 3 * x_.size() : 0);
+    if (deformation)
+      for (std::size_t k = 0; k < owned.size(); ++k)
+        for (int c = 0; c < 9; ++c)
+          F_[9 * k + c] = (*deformation)[9 * owned[k] + c];
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int d = 0; d < 3; ++d)
       {
@@ -148,6 +156,8 @@ namespace coupling
     ContactParticles particles{x_.data(), v_.data(), m_.data(), owned.size()};
     if (force)
       particles.force = f_.data();
+    if (deformation)
+      particles.deformation = F_.data();
     return particles;
   }
 

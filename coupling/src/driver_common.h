@@ -97,11 +97,13 @@ namespace coupling
     /// particle [N]), theirs of it as ContactParticles::force. Valid until the next pack (and
     /// while the body's arrays stay in place: owned particles in one run of local indices are
     /// not copied but pointed at).
+    /// `deformation` (9 per local particle), theirs of it as ContactParticles::deformation.
     ContactParticles pack(const sph::Body<3> &body, const sph::Domain &domain,
-                          const std::vector<double> *force = nullptr);
+                          const std::vector<double> *force = nullptr,
+                          const std::vector<double> *deformation = nullptr);
 
   private:
-    std::vector<double> x_, v_, m_, f_;
+    std::vector<double> x_, v_, m_, f_, F_;
   };
 
   /// Adds the contact forces `force` [N] (3 per particle: of every particle, or with `domain` of

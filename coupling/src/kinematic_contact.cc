@@ -67,11 +67,21 @@ namespace coupling
           fr = FrictionState{};
           continue;
         }
-        const Hit hit = find_face(pt.position + 3 * i, s);
+        Hit hit = find_face(pt.position + 3 * i, s);
         if (hit.face < 0)
         {
           fr = FrictionState{};
           continue;
+        }
+        if (pt.deformation) // the particle's half cell strains with it: held at r (n . F n)
+        {
+          const double *F = pt.deformation + 9 * i;
+          const auto &nn  = hit.normal;
+          double stretch  = 0;
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+              stretch += nn[a] * F[3 * a + b] * nn[b];
+          hit.gap += prm_.radius * (1.0 - stretch);
         }
         V3 vm{0, 0, 0};
         for (int a = 0; a < 4; ++a)

@@ -488,9 +488,20 @@ namespace coupling
         for (int d = 0; d < 3; ++d)
           force_before_contact_[3 * i + d] = fi[i][d] + fp[i][d] + fe[i][d];
       particles.force = force_before_contact_.data();
+      // the half cells at the faces strain with their particles
+      deformation_.resize(9 * body_->n_particles());
+      for (unsigned int i = 0; i < body_->n_particles(); ++i)
+      {
+        const auto &F = body_->deformation_gradient(i);
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            deformation_[9 * i + 3 * a + b] = F(a, b);
+      }
+      particles.deformation = deformation_.data();
     }
     if (domain_) // the owned particles only, packed
-      particles = owned_.pack(*body_, *domain_, kinematic ? &force_before_contact_ : nullptr);
+      particles = kinematic ? owned_.pack(*body_, *domain_, &force_before_contact_, &deformation_)
+                            : owned_.pack(*body_, *domain_);
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);
     std::fill(force_on_bottom_.begin(), force_on_bottom_.end(), 0.0);

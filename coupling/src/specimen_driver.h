@@ -134,6 +134,7 @@ namespace coupling
     double gauge_counts_[3] = {0, 0, 0};
     double gauge_length0_ = 0;
     std::vector<double> force_before_contact_; ///< kinematic contact: f_int + f_pressure + f_ext [N]
+    std::vector<double> deformation_;          ///< kinematic contact: each particle's F, row-major [-]
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
     // the stop criterion's state, members so that a checkpoint holds them
     double peak_force_ = 0;

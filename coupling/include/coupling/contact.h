@@ -52,6 +52,11 @@ namespace coupling
     /// Force on each particle before contact this step [N] (flat, 3 n): the kinematic method
     /// predicts the step x + dt (v + dt f / m) of the symplectic Euler update with it
     const double *force = nullptr;
+    /// Deformation gradient of each particle, 9 per particle, row-major [-] (optional; the
+    /// kinematic method): a particle is held at r (n . F n) from a face instead of r, so that the
+    /// half cell between its centre and the face strains with it. Without it the end layer's half
+    /// cells are rigid and the platens read E L / (L - dx) of a specimen of length L.
+    const double *deformation = nullptr;
   };
 
   /// How the interface enforces contact.
