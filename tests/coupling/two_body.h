@@ -72,10 +72,12 @@ namespace coupling::testing
     }
 
     /// One coupled step. `extra` may add forces [N] to the rock's external forces (loads,
-    /// damping) after the contact forces are known.
+    /// damping); they act before the contact, so that the kinematic method predicts with them.
     void step(const std::function<void(sph::Body<3> &)> &extra = {})
     {
       rock_->compute_forces();
+      if (extra)
+        extra(*rock_);
       const bool kinematic = method_ == ContactMethod::kinematic;
       surface_ =
         kinematic ? predicted_contact_surface(*platen_, dt_, n_sub_) : contact_surface(*platen_);
@@ -100,8 +102,6 @@ namespace coupling::testing
       for (unsigned int i = 0; i < rock_->n_particles(); ++i)
         for (int d = 0; d < 3; ++d)
           f_ext[i][d] += f_rock_[3 * i + d];
-      if (extra)
-        extra(*rock_);
       rock_->integrate(dt_);
       const double h = dt_ / n_sub_;
       for (int k = 0; k < n_sub_; ++k)
