@@ -281,6 +281,48 @@ TEST(ContactKinematic, ForcesOnADeformableFaceCancelAndPushEveryParticleOut)
     EXPECT_GT(fp[3 * i + 2], 0.0);
 }
 
+TEST(ContactKinematic, ContactsSharingNodesEndTheStepExactlyOnTheDeformedFace)
+{
+  // 36 particles of 2 g move into a face whose nodes weigh as much as a particle: each node is
+  // pushed by up to four particles, so a particle corrected alone against its node masses would
+  // leave the others' pushes out. The contacts solved together end the step (the particles'
+  // symplectic Euler step, the nodes' step under the reactions) at the contact radius from the
+  // moved face, every one of them: 1e-6 of the radius, the sweeps' stopping rule.
+  const double node_mass = 2e-3, dt = 1e-6, r = 5e-4;
+  const int n_quads      = 4;
+  const double L         = 0.04;
+  const ContactSurface s = flat_surface(n_quads, L, 0.0, node_mass);
+  ContactParameters prm;
+  prm.method = ContactMethod::kinematic;
+  prm.radius = r;
+  const Patch p = particle_patch(
+    6, [](int i, int j) { return std::array<double, 3>{{0.005 + 0.006 * i, 0.004 + 0.0065 * j, 4.9e-4}}; },
+    [](int i, int) { return std::array<double, 3>{{0.0, 0.0, -0.5 - 0.1 * i}}; });
+  PenaltyContact contact(prm, p.m.size());
+  std::vector<double> fp(p.x.size(), 0.0), fn(s.position.size(), 0.0);
+  ASSERT_EQ(contact.apply(p.particles(), s, dt, fp, fn), p.m.size());
+  // the step of both sides
+  std::vector<double> node_z(s.n_nodes());
+  for (std::size_t a = 0; a < s.n_nodes(); ++a)
+    node_z[a] = s.position[3 * a + 2] + dt * (s.velocity[3 * a + 2] + dt * fn[3 * a + 2] / node_mass);
+  const double h = L / n_quads;
+  double worst   = 0;
+  for (std::size_t k = 0; k < p.m.size(); ++k)
+  {
+    double x[3];
+    for (int d = 0; d < 3; ++d)
+      x[d] = p.x[3 * k + d] + dt * (p.v[3 * k + d] + dt * fp[3 * k + d] / p.m[k]);
+    // the moved face under the particle: bilinear in the quad that holds it
+    const int i = static_cast<int>(x[0] / h), j = static_cast<int>(x[1] / h);
+    const double u = x[0] / h - i, w = x[1] / h - j;
+    const unsigned a = j * (n_quads + 1) + i;
+    const double z_face = (1 - u) * (1 - w) * node_z[a] + u * (1 - w) * node_z[a + 1] +
+                          u * w * node_z[a + n_quads + 2] + (1 - u) * w * node_z[a + n_quads + 1];
+    worst = std::max(worst, std::abs(x[2] - z_face - r));
+  }
+  EXPECT_LT(worst, 1e-6 * r);
+}
+
 TEST(ContactEnergy, ElasticBounceKeepsEnergy)
 {
   // A particle dropped on a rigid face at k = 0.5 of the stability bound bounces back with its
