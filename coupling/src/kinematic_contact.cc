@@ -112,6 +112,10 @@ namespace coupling
       for (const Contact &c : list)
         for (int a = 0; a < 4; ++a)
           node_weight_[s.faces[c.hit.face][a]] += c.hit.weight[a];
+    // a deformable face: the same on every process (the face is whole on each)
+    const bool deformable = std::any_of(s.mass.begin(), s.mass.end(), [](double m) { return m > 0; });
+    if (deformable && reduce_sum_) // the other processes' contacts on the same nodes
+      reduce_sum_(node_weight_.data(), static_cast<int>(node_weight_.size()));
 
     // 3. the forces. Contact k moves relative to its face over the step by
     //      D_k = dt v*_k + dt^2 f_k / m_k - sum_a w_ka dt^2 F_a / M_a,   F_a = -sum_j w_ja f_j,
@@ -133,7 +137,6 @@ namespace coupling
       }
     const std::size_t n_all = all.size();
     std::vector<double> m_eff(n_all);
-    bool deformable = false;
     for (std::size_t k = 0; k < n_all; ++k)
     {
       const Hit &hit      = all[k]->hit;
@@ -143,10 +146,7 @@ namespace coupling
         const unsigned int node = s.faces[hit.face][a];
         const double m          = s.mass[node];
         if (m > 0 && hit.weight[a] > 0)
-        {
           inverse_mass += hit.weight[a] * node_weight_[node] / m; // w^2 / (m w / sum w)
-          deformable = true;
-        }
       }
       m_eff[k] = 1.0 / inverse_mass;
     }
@@ -213,6 +213,8 @@ namespace coupling
               for (int d = 0; d < 3; ++d)
                 node_shift[3 * node + d] -= dt * dt * all[k]->hit.weight[a] * all[k]->force[d] / s.mass[node];
           }
+        if (reduce_sum_) // the nodes also move under the other processes' contacts
+          reduce_sum_(node_shift.data(), static_cast<int>(node_shift.size()));
       }
       for (std::size_t k = 0; k < n_all; ++k)
       {
@@ -253,6 +255,8 @@ namespace coupling
             worst = std::max(worst, std::sqrt(dot(t, t)));
           }
         }
+        if (reduce_max_) // every process sweeps as long as any needs it
+          worst = reduce_max_(worst);
         if (worst < tolerance)
           break;
         for (std::size_t k = 0; k < n_all; ++k)

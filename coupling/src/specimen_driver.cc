@@ -398,6 +398,10 @@ namespace coupling
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, n_contact);
+    if (domain_) // the kinematic contacts on an elastic platen's nodes, solved across the ranks
+      for (PenaltyContact *c : {contact_top_.get(), contact_bottom_.get()})
+        c->set_reduction([d = domain_.get()](double *v, int n) { d->sum_in_place(v, n); },
+                         [d = domain_.get()](double v) { return d->max(v); });
     if (!factor.empty() && domain_) // the owned particles' factors
     {
       std::vector<double> mine;

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <map>
 #include <string>
@@ -139,6 +140,17 @@ namespace coupling
     std::size_t apply(const ContactParticles &particles, const ContactSurface &surface, double dt,
                       std::vector<double> &force_on_particles, std::vector<double> &force_on_nodes);
 
+    /// The kinematic contact on a deformable face whose contacts are split over several
+    /// processes (MPI ranks, each with its own particles and the whole face): `sum` replaces an
+    /// array by its sum over them, `max` a value by its largest; both collective, called the same
+    /// number of times on every process. With them the contacts that share face nodes are solved
+    /// together across the processes, as on one. Unset: one process.
+    void set_reduction(std::function<void(double *, int)> sum, std::function<double(double)> max)
+    {
+      reduce_sum_ = std::move(sum);
+      reduce_max_ = std::move(max);
+    }
+
     /// Per-particle factors on the penalty stiffness (size n_particles; empty = all 1), e.g. so
     /// that a rigid platen loads each particle in proportion to the area it carries.
     void set_stiffness_factors(std::vector<double> factors) { stiffness_factor_ = std::move(factors); }
@@ -208,6 +220,8 @@ namespace coupling
     /// platen are stored, not a record per particle.
     std::vector<std::vector<Contact>> contacts_;
     std::vector<double> node_weight_; ///< kinematic: per node, the sum of its contact weights
+    std::function<void(double *, int)> reduce_sum_; ///< kinematic: see set_reduction
+    std::function<double(double)> reduce_max_;
     // uniform grid of face bounding boxes
     std::array<double, 3> grid_origin_{};
     std::array<double, 3> grid_top_{}; // the upper corner of the faces' inflated boxes
