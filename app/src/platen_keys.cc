@@ -43,6 +43,18 @@ namespace app::keys
         return std::string("needs the kinematic contact (Contact method = kinematic, or automatic for UCS, BTS, CTCS)");
       return pl.friction == 0 ? std::string() : std::string("a bonded interface has no friction; leave Friction coefficient 0");
     });
+    s.add<double>("Contact tolerance", pl.contact_tolerance,
+                  "kinematic contact on elastic platens: the contacts sharing face nodes are solved together until every end gap is below this fraction of the contact radius [-]",
+                  [](double v) { return v > 0 && v <= 1e-2; }, "must be in (0, 0.01]");
+    s.check("Contact tolerance", [&p]() {
+      // read by the kinematic contact on elastic platens only
+      if (p.platens.contact_tolerance == coupling::PlatenParameters().contact_tolerance ||
+          (coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
+           p.platens.steel.model == fem::SteelModel::elastic))
+        return std::string();
+      return std::string("is read by the kinematic contact on elastic platens only (Contact method = "
+                         "kinematic or automatic for UCS, BTS, CTCS, and Model = elastic); leave it at 1e-6");
+    });
     s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
                   "must be in (0, 1e13) Pa");
     s.add<double>("Poissons ratio", steel.poissons_ratio, "[-]", [](double v) { return v >= 0 && v < 0.5; },

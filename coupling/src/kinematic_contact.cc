@@ -126,7 +126,7 @@ namespace coupling
     //    share: projected Jacobi sweeps, each contact corrected with its effective mass m_eff
     //    (the node masses shared by weight: a diagonal no smaller than the coupling's row sums,
     //    so the sweeps converge; a uniform push converges in one), until every end gap and stuck
-    //    slip is below 1e-6 of the contact radius.
+    //    slip is below ContactParameters::tolerance (1e-6) of the contact radius.
     std::vector<Contact *> all;
     std::vector<const Candidate *> motion;
     for (std::size_t t = 0; t < contacts_.size(); ++t)
@@ -234,7 +234,7 @@ namespace coupling
     relative_motion();
     if (deformable)
     {
-      const double tolerance = 1e-6 * prm_.radius;
+      const double tolerance = prm_.tolerance * prm_.radius;
       const int max_sweeps   = 200;
       std::vector<V3> next(n_all);
       for (int sweep = 0; sweep < max_sweeps; ++sweep)

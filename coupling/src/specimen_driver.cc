@@ -395,6 +395,7 @@ namespace coupling
     cp.radius           = contact_radius_;
     cp.method           = contact_method(prm_);
     cp.bonded           = prm_.platens.bonded;
+    cp.tolerance        = prm_.platens.contact_tolerance;
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, n_contact);

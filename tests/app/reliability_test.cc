@@ -411,6 +411,9 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
     // a penalty setting on the kinematic (default) interface would be read and ignored
     {"Platens/Contact stiffness scale=0.4", {"Platens/Contact stiffness scale", "Contact method = penalty"}},
     {"Platens/Contact method=spring", {"Platens/Contact method", "automatic, penalty, kinematic"}},
+    {"Platens/Contact tolerance=0", {"Platens/Contact tolerance", "(0, 0.01]"}},
+    // rigid platens: the tolerance would be read and ignored
+    {"Platens/Contact tolerance=1e-5", {"Platens/Contact tolerance", "elastic platens only"}},
     {"Platens/Poissons ratio=0.5", {"Platens/Poissons ratio", "[0, 0.5)"}},
     {"Loading/End strain=0.9", {"Loading/End strain", "(0, 0.5]"}},
     {"Loading/Post-peak drop=1", {"Loading/Post-peak drop", "(0, 1)"}},

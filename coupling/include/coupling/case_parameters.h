@@ -68,6 +68,9 @@ namespace coupling
     ContactMethod contact_method = ContactMethod::automatic;
     /// kinematic only: the rock tied to the platen once touched (no slip, no separation)
     bool bonded = false;
+    /// kinematic on elastic platens: the contacts' joint solution stops when every end gap is
+    /// below this fraction of the contact radius [-]
+    double contact_tolerance = 1e-6;
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     /// penalty stiffness / its stability bound at the rock's own step [-]; the coupled step is

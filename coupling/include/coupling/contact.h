@@ -86,6 +86,9 @@ namespace coupling
     /// Kinematic only: a particle that touched the face stays tied to it (normal tension and
     /// shear without limit; the friction coefficients are not used)
     bool bonded = false;
+    /// Kinematic on a deformable face: the sweeps stop when every end gap and stuck slip is below
+    /// this fraction of the contact radius [-]
+    double tolerance = 1e-6;
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
