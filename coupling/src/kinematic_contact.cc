@@ -7,8 +7,11 @@
 ///   f_n = -m_eff g* / dt^2,   1 / m_eff = 1 / m_particle + sum_a w_a^2 / m_a,share,
 /// the face's node masses shared among the particles that touch them in proportion to their
 /// shape-function weights w_a (m_a,share = m_a w_a / sum over the node's contacts of w), so that
-/// several particles on one node do not each move it as if alone. A rigid master has no mass:
-/// m_eff is the particle's. The tangential force that would stop the relative sliding over the
+/// several particles on one node do not each move it as if alone; on a deformable face the
+/// contacts are then corrected together (projected Jacobi sweeps, see step 3) until each ends
+/// the step on the moved face. A rigid master has no mass: m_eff is the particle's, and one pass
+/// is exact. A particle is held at r (n . F n) from the face, its half cell straining with it
+/// (ContactParticles::deformation). The tangential force that would stop the relative sliding over the
 /// step, f_t* = -m_eff v_t* / dt, is applied while |f_t*| <= mu_s f_n (stick), else
 /// mu_d f_n along it (slip); sliding continues while |f_t*| > mu_d f_n. A bonded interface ties a
 /// particle once it has touched: normal and tangential forces without limit, tension included.

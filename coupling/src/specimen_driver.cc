@@ -473,7 +473,8 @@ namespace coupling
       body_->set_surface_pressure(prm_.confining_pressure *
                                   std::min(1.0, time_ / plan_.confinement_time));
 
-    // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged
+    // FEM -> SPH: the contact-face nodes are the background particles, mirrored unchanged (the
+    // kinematic contact takes their velocities over the coming step, predicted_contact_surface)
     const bool kinematic = contact_method(prm_) == ContactMethod::kinematic;
     const ContactSurface s_top =
       kinematic ? predicted_contact_surface(*top_, dt_, n_substeps_) : contact_surface(*top_);
