@@ -140,7 +140,7 @@ namespace coupling
       return particles;
     }
     f_.resize(force ? x_.size() : 0);
-    F_.resize(deformation ? 3 * x_.size() : 0);
+    F_.resize(deformation ? 9 * owned.size() : 0);
     if (deformation)
       for (std::size_t k = 0; k < owned.size(); ++k)
         for (int c = 0; c < 9; ++c)

@@ -33,13 +33,6 @@ namespace coupling
   {
     using V3 = std::array<double, 3>;
     inline double dot(const V3 &a, const V3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-    /// A particle that ends the step in contact: its face, and its predicted relative motion.
-    struct Candidate
-    {
-      std::array<double, 3> relative_velocity; ///< v* of the particle minus the contact point's [m/s]
-      double predicted_gap;                   ///< g* [m]
-    };
   } // namespace
 
   std::size_t PenaltyContact::apply_kinematic(const ContactParticles &pt, const ContactSurface &s, double dt,
@@ -56,12 +49,13 @@ namespace coupling
       contacts_.resize(max_threads);
     for (auto &list : contacts_)
       list.clear();
-    std::vector<std::vector<Candidate>> predicted(contacts_.size());
+    // per contact: v* of the particle minus the contact point's [m/s]
+    std::vector<std::vector<V3>> predicted(contacts_.size());
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), nt = omp_get_num_threads();
       std::vector<Contact> &mine     = contacts_[t];
-      std::vector<Candidate> &motion = predicted[t];
+      std::vector<V3> &motion = predicted[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
         FrictionState &fr = friction_[i];
@@ -105,7 +99,7 @@ namespace coupling
           continue;
         }
         mine.push_back({static_cast<std::int32_t>(i), hit, {0, 0, 0}});
-        motion.push_back({vr, g});
+        motion.push_back(vr);
       }
     }
 
@@ -131,7 +125,7 @@ namespace coupling
     //    so the sweeps converge; a uniform push converges in one), until every end gap and stuck
     //    slip is below ContactParameters::tolerance (1e-6) of the contact radius.
     std::vector<Contact *> all;
-    std::vector<const Candidate *> motion;
+    std::vector<const V3 *> motion;
     for (std::size_t t = 0; t < contacts_.size(); ++t)
       for (std::size_t k = 0; k < contacts_[t].size(); ++k)
       {
@@ -198,7 +192,7 @@ namespace coupling
     // the first pass: each contact alone against its share of the nodes
     for (std::size_t k = 0; k < n_all; ++k)
     {
-      const V3 &vr = motion[k]->relative_velocity;
+      const V3 &vr = *motion[k];
       moved[k]     = {dt * vr[0], dt * vr[1], dt * vr[2]};
       all[k]->force = correct(k, {0, 0, 0}, moved[k]);
     }
@@ -221,7 +215,7 @@ namespace coupling
       }
       for (std::size_t k = 0; k < n_all; ++k)
       {
-        const V3 &vr    = motion[k]->relative_velocity;
+        const V3 &vr    = *motion[k];
         const double mp = pt.mass[all[k]->particle];
         for (int d = 0; d < 3; ++d)
           moved[k][d] = dt * vr[d] + dt * dt * all[k]->force[d] / mp;

@@ -150,6 +150,33 @@ namespace
     EXPECT_LT(rr, 1e-20 * rr0) << "CG did not converge";
     return dot(f, u) / (F * F);
   }
+
+  /// The parts of the series stiffness of elastic_ucs_elastic_platens()-like case `c`, each
+  /// computed without the coupled run: the true section [m^2], the rock's compliance L / (E A)
+  /// [m/N], the particles of the end layer, and one platen's compliance under that layer from a
+  /// static FEM-only solve [m/N].
+  struct SeriesParts
+  {
+    double area = 0, rock = 0, platen = 0;
+    std::size_t n_layer = 0;
+  };
+  SeriesParts series_parts(const CaseParameters &c)
+  {
+    const auto lattice = sph::make_cylinder<3>(c.diameter, c.length, c.sph.spacing);
+    double z_min       = 1e300;
+    for (const auto &p : lattice.positions)
+      z_min = std::min(z_min, p[2]);
+    std::vector<sph::Vector<3>> layer;
+    for (const auto &p : lattice.positions)
+      if (std::abs(p[2] - z_min) < 1e-9)
+        layer.push_back(p);
+    SeriesParts parts;
+    parts.area    = lattice.true_section_area;
+    parts.rock    = c.length / (c.rock.youngs_modulus * parts.area);
+    parts.platen  = platen_compliance(bottom_platen(c), layer, 0.5 * c.sph.spacing);
+    parts.n_layer = layer.size();
+    return parts;
+  }
 } // namespace
 
 TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
@@ -172,22 +199,14 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
   //    it: the default fraction of the central-difference bound of the lightest particle against
   //    the lightest contact node, at the rock's own time step);
   //  - each platen: its compliance under the particle layer from a static FEM-only solve.
-  const auto lattice = sph::make_cylinder<3>(c.diameter, c.length, c.sph.spacing);
-  double z_min = 1e300;
-  for (const auto &p : lattice.positions)
-    z_min = std::min(z_min, p[2]);
-  std::vector<sph::Vector<3>> layer;
-  for (const auto &p : lattice.positions)
-    if (std::abs(p[2] - z_min) < 1e-9)
-      layer.push_back(p);
-  const fem::SteelBody platen = bottom_platen(c);
+  const SeriesParts parts = series_parts(c);
   // k as the driver sets it (summary.json: contact_stiffness_N_per_m)
   const double k = extra(s, "contact_stiffness_N_per_m");
   ASSERT_GT(k, 0.0);
-  const double area          = lattice.true_section_area;
-  const double rock_c        = c.length / (c.rock.youngs_modulus * area);
-  const double contact_c     = 1.0 / (layer.size() * k);
-  const double platen_c      = platen_compliance(platen, layer, 0.5 * c.sph.spacing);
+  const double area          = parts.area;
+  const double rock_c        = parts.rock;
+  const double contact_c     = 1.0 / (parts.n_layer * k);
+  const double platen_c      = parts.platen;
   const double series_c      = rock_c + 2.0 * contact_c + 2.0 * platen_c;
   const double expected      = c.length / (series_c * area);
   const double without_layer = c.length / ((rock_c + 2.0 * platen_c) * area);
@@ -247,19 +266,9 @@ TEST(CoupledKinematic, ElasticPlatensGiveTheSeriesStiffnessWithoutAnInterfaceLay
   ASSERT_GT(s.peak_force, 0.0) << "the specimen must carry load, or the test proves nothing";
   // every pair force applied once to each side, the Jacobi sweeps included
   EXPECT_LT(s.max_exchange_imbalance, 1e-12);
-  const auto lattice = sph::make_cylinder<3>(c.diameter, c.length, c.sph.spacing);
-  double z_min       = 1e300;
-  for (const auto &p : lattice.positions)
-    z_min = std::min(z_min, p[2]);
-  std::vector<sph::Vector<3>> layer;
-  for (const auto &p : lattice.positions)
-    if (std::abs(p[2] - z_min) < 1e-9)
-      layer.push_back(p);
-  const fem::SteelBody platen = bottom_platen(c);
-  const double area           = lattice.true_section_area;
-  const double rock_c         = c.length / (c.rock.youngs_modulus * area);
-  const double platen_c       = platen_compliance(platen, layer, 0.5 * c.sph.spacing);
-  const double expected       = c.length / ((rock_c + 2.0 * platen_c) * area);
+  const SeriesParts parts = series_parts(c);
+  const double rock_c     = parts.rock, platen_c = parts.platen;
+  const double expected   = c.length / ((rock_c + 2.0 * platen_c) * parts.area);
   std::cout << "[series, kinematic] apparent modulus " << s.platen_modulus / 1e9 << " GPa, expected "
             << expected / 1e9 << " GPa, gauge modulus " << s.youngs_modulus / 1e9 << " GPa, energy error "
             << s.energy_balance_error << "\n";

@@ -377,3 +377,36 @@ TEST(FemMesh, JawContactFaceFollowsItsArc)
   // the contact normals still point out of the jaw, towards the rock (down)
   EXPECT_LT(jaw.contact_normal_z(), 0.0);
 }
+
+TEST(FemCoupling, ContactFreeAccelerationIsWhatTheNextStepAddsToTheVelocity)
+{
+  // the acceleration a constraint contact predicts the face with must be the one the body's own
+  // step applies: after a step of dt (so that the next one's mid-step interval is dt), a strained
+  // and moving platen with stiffness damping, stepped once more without contact forces, changes
+  // its contact-node velocities by dt times contact_free_accelerations(). Round-off only.
+  fem::Parameters prm;
+  prm.model             = fem::SteelModel::elastic;
+  prm.element_size      = 0.006;
+  prm.stiffness_damping = 1e-8;
+  fem::SteelBody platen(cylinder_geometry(0.05, 0.02, 0.0, fem::BodySide::below), prm);
+  const auto x0       = platen.reference_positions();
+  const std::size_t n = x0.size();
+  std::vector<double> u(n), v(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double x = x0[3 * (i / 3)], y = x0[3 * (i / 3) + 1], z = x0[3 * (i / 3) + 2];
+    u[i] = 1e-6 * (std::sin(40 * x + i % 3) + y * z * 1e3);
+    v[i] = 1e-3 * std::cos(30 * y - i % 3);
+  }
+  platen.set_state(u, v);
+  const double dt = 0.5 * platen.stable_time_step();
+  platen.step(0.0, dt);
+  const std::vector<double> a = platen.contact_free_accelerations(), v0 = platen.contact_velocities();
+  platen.step(dt, dt);
+  const std::vector<double> v1 = platen.contact_velocities();
+  ASSERT_GT(max_abs(a), 0.0) << "the state must load the contact nodes";
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    worst = std::max(worst, std::abs((v1[i] - v0[i]) / dt - a[i]));
+  EXPECT_LT(worst, 1e-9 * max_abs(a));
+}
