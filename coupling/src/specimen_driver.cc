@@ -389,7 +389,7 @@ namespace coupling
         std::min(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end()));
     }
     ContactParameters cp;
-    cp.stiffness = s * stable_contact_stiffness(m_particle, m_node, dt_sph);
+    cp.stiffness = kinematic ? 0.0 : s * stable_contact_stiffness(m_particle, m_node, dt_sph);
     cp.friction_static  = prm_.platens.friction;
     cp.friction_dynamic = prm_.platens.dynamic_friction < 0 ? prm_.platens.friction : prm_.platens.dynamic_friction;
     cp.radius           = contact_radius_;
@@ -944,7 +944,8 @@ namespace coupling
     s.max_force_imbalance            = max_imbalance;
     s.max_exchange_imbalance         = max_exchange_imbalance_;
     // the penalty stiffness per particle before the loaded-face factors, for the series checks
-    s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
+    if (contact_method(prm_) == ContactMethod::penalty) // the kinematic contact has no stiffness
+      s.extra.push_back({"contact_stiffness_N_per_m", contact_top_->stiffness()});
     // the SPH pairs (fixed in total Lagrangian; at the end in updated Lagrangian): with n_steps
     // and wall_seconds the pair interactions per second (tools/bench)
     s.extra.push_back({"n_sph_pairs", static_cast<double>(domain_ ? n_global_pairs_ : body_->n_pairs())});
