@@ -62,6 +62,12 @@ run() {
                     --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
     platens-bts-bonded) study platens-bts-bonded $bts --set "Platens/Bonded=true" \
                     --vary "Platens/Model=rigid,elastic" ;;
+    # the BTS displacement at peak (cases/diagnose-basalt/README.md): crack closure against a
+    # compliant load frame, on the 1.25 mm disc (spacing-converged) and the 2.5 mm cylinder
+    basalt-bts-compliance) study basalt-bts-compliance $bts --set "SPH/Particle spacing=0.00125" \
+                    --vary "Platens/Frame stiffness=0,5.3e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
+    basalt-ucs-compliance) study basalt-ucs-compliance $ucs --set "Loading/End strain=0.03" \
+                    --vary "Platens/Frame stiffness=0,5.3e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
     # 5 mm (10 particles across): 18 runs in the time budget of a shared machine
     ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.005" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
@@ -71,7 +77,8 @@ run() {
 
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
-     platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded)
+     platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
+     basalt-ucs-compliance)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
