@@ -128,7 +128,7 @@ namespace coupling
     const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
     const sph::Lattice<3> lattice =
       bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx)
-                     : sph::make_disc<3>(prm_.diameter, prm_.length, dx))
+                     : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
            : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx)
                      : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));
     true_area_                    = lattice.true_section_area;
@@ -275,6 +275,7 @@ namespace coupling
       // and would start pressed into both platens (an impulse at the first step). The cylinder's
       // layers fit its length exactly (cells of L / round(L / dx) along z and a contact radius
       // of half of that), so its platens stay at 0 and L; slack: round-off of the coordinates.
+      // A flattened disc's flats lie inside 0 and D: its platens go onto them.
       const double slack = 1e-9 * dx;
       double       hi = -1e300, lo = 1e300;
       for (const auto &p : x0_global_)
@@ -282,9 +283,10 @@ namespace coupling
         hi = std::max(hi, p[2] + contact_radius_);
         lo = std::min(lo, p[2] - contact_radius_);
       }
-      if (hi > top_z + slack)
+      const bool flats = bts_ && prm_.flat_angle > 0;
+      if (hi > top_z + slack || flats)
         top_z = hi;
-      if (lo < bottom_z - slack)
+      if (lo < bottom_z - slack || flats)
         bottom_z = lo;
     }
     try

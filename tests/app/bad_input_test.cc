@@ -445,6 +445,24 @@ TEST(BadInput, EffectKeysOutOfRangeOrWithoutTheirModel)
                    {"Platens/Frame damping ratio", "Frame stiffness > 0"});
 }
 
+// The flattened disc's loading angle: out of range, on a cylinder, on rings, under jaws.
+TEST(BadInput, FlatLoadingAngleOutOfRangeOrWithoutAFlatDisc)
+{
+  Sandbox           box;
+  const std::string bts = source("cases/bts/bts.prm");
+  expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=75"},
+                   {"Test/Flat loading angle", "[0, 60]"});
+  expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=-5"},
+                   {"Test/Flat loading angle", "[0, 60]"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Test/Flat loading angle=20"},
+                   {"Test/Flat loading angle", "BTS"});
+  expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=20", "--set",
+                         "SPH/Particle arrangement=body-fitted"},
+                   {"Test/Flat loading angle", "lattice"});
+  expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=20", "--set", "Platens/Shape=jaw"},
+                   {"Test/Flat loading angle", "flat"});
+}
+
 // diagnose refuses only the physically impossible, in one line with exit 2: a TXE row whose
 // confining fluid pulls
 TEST(BadInput, DiagnoseTxeWithPullingFluid)

@@ -76,6 +76,44 @@ namespace
     EXPECT_NEAR(lat.lattice_section_area / lat.true_section_area, 1.0, 0.05);
   }
 
+  // A flattened disc (loading angle 2 alpha = 20 deg): at every spacing its outer rows reach the
+  // flats at D/2 -+ R cos(alpha) exactly (the platens rest there), the flats are 2 R sin(alpha)
+  // wide to within the chord of one row (d(width)/dz = 2 cot(alpha) dz / 2 at the flat's edge,
+  // plus a cell for the staircase), and the volumes sum to the circle less its two segments.
+  TEST(SphLattice, FlattenedDiscHasItsFlatsAtEverySpacing)
+  {
+    const double D = 0.05, t = 0.025, R = 0.5 * D, angle = 20 * M_PI / 180, a = 0.5 * angle;
+    for (const double dx : {0.0025, 0.0022, 0.00125})
+      {
+        const Lattice<3> lat = make_disc<3>(D, t, dx, angle);
+        const double     dz  = lat.cell_size[2];
+        double           v = 0, zmax = -1, zmin = 1;
+        for (std::size_t i = 0; i < lat.positions.size(); ++i)
+          {
+            v += lat.volumes[i];
+            zmax = std::max(zmax, lat.positions[i][2]);
+            zmin = std::min(zmin, lat.positions[i][2]);
+          }
+        EXPECT_NEAR(zmax + 0.5 * dz, R + R * std::cos(a), 1e-12) << dx;
+        EXPECT_NEAR(zmin - 0.5 * dz, R - R * std::cos(a), 1e-12) << dx;
+        EXPECT_NEAR(dz / dx, 1.0, 0.1) << dx; // rows within 10 % of the spacing
+        double xmax = 0;
+        for (const auto &x : lat.positions)
+          if (x[2] == zmax)
+            xmax = std::max(xmax, std::abs(x[0]));
+        const double half_width = xmax + 0.5 * dx; // the top row's extent
+        EXPECT_GT(half_width, R * std::sin(a)) << dx;
+        EXPECT_LT(half_width, R * std::sin(a) + dz / std::tan(a) + dx) << dx;
+        const double face = M_PI * R * R - R * R * (angle - std::sin(angle));
+        EXPECT_NEAR(v, face * t, 1e-12 * v) << dx;
+        EXPECT_NEAR(lat.true_section_area, 2 * R * std::cos(a) * t, 1e-15) << dx;
+      }
+    // 0: the round disc, unchanged; beyond 60 deg or negative: refused
+    EXPECT_EQ(make_disc<3>(D, t, 0.0025, 0.0).positions.size(), make_disc<3>(D, t, 0.0025).positions.size());
+    EXPECT_THROW(make_disc<3>(D, t, 0.0025, -0.1), std::invalid_argument);
+    EXPECT_THROW(make_disc<3>(D, t, 0.0025, 1.1), std::invalid_argument);
+  }
+
   TEST(SphLattice, RejectsNonPositiveSizes)
   {
     EXPECT_THROW(make_cylinder<3>(-0.05, 0.1, 0.001), std::invalid_argument);

@@ -136,6 +136,9 @@ namespace coupling
     double diameter = 0.05;          ///< specimen diameter [m]
     double length = 0.1;             ///< UCS/CTCS: length; BTS: disc thickness [m]
     double confining_pressure = 0.0; ///< CTCS lateral pressure [Pa], compression positive
+    /// BTS: loading angle 2 alpha of a flattened Brazilian disc [rad] (two flats 2 R sin(alpha)
+    /// wide, the platens on them); 0 = the round disc
+    double flat_angle = 0.0;
     sph::MaterialParameters rock = case_rock(); ///< the rock material (group values resolved)
     RockCase rock_case;              ///< the rock's group, strength source and scatter
     sph::Parameters sph;             ///< SPH numerics (TSSFAC as given; the body takes min(TSSFAC, 1))

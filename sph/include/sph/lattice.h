@@ -39,11 +39,20 @@ namespace sph
   template <int dim>
   Lattice<dim> make_cylinder(double diameter, double length, double spacing);
 
+  /// Largest loading angle 2 alpha of a flattened disc [rad] (60 degrees; the flattened
+  /// Brazilian test uses about 20).
+  constexpr double max_flat_angle = 1.0471975511965976;
+
   /// Brazilian disc of diameter D and thickness t [m]: its axis along y, |y| <= t/2, centre at
   /// (0, 0, D/2) so that its lowest point is at z = 0 and the load acts along z.
   /// In 2-D: the circle of diameter D centred at (0, D/2) (plane strain).
+  /// `flat_angle` > 0 [rad] makes it a flattened Brazilian disc: two flats normal to z, each
+  /// 2 R sin(flat_angle / 2) wide, at z = D/2 -+ R cos(flat_angle / 2); the rows along z are then
+  /// H / round(H / dx) apart, H = D cos(flat_angle / 2), so that the outer rows reach the flats
+  /// (cell_size[z] holds that row distance). 0: the round disc, rows dx apart. At most
+  /// max_flat_angle.
   template <int dim>
-  Lattice<dim> make_disc(double diameter, double thickness, double spacing);
+  Lattice<dim> make_disc(double diameter, double thickness, double spacing, double flat_angle = 0);
 
   /// Box [lower, upper] [m]; each side is split into round(side/dx) cells (at least one).
   template <int dim>
