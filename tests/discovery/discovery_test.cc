@@ -40,6 +40,7 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <set>
 #include <sstream>
 
 namespace
@@ -360,4 +361,101 @@ TEST(Discovery, Heterogeneity)
     EXPECT_NEAR(parameter(d, "weibull_m"), t.weibull_m, 0.1 * t.weibull_m) << "seed " << seed;
     EXPECT_GE(d.discrepancy_gain, 5.0) << "seed " << seed;
   }
+}
+
+// Every pair of the seven effects hidden together (the generator combines them), seeds 1-3 for
+// each of the 21 pairs, the ranges of the single-effect tests above. Both effects must be named,
+// and each parameter must come within 20 % (the bar for pairs) and within 3.5 of its
+// reported standard errors of the truth. Measured: the worst error is 12.2 % (mu beside the
+// cut-off, 1.7 SE); 112 of 114 estimates lie within 3 SE. The other two are E0_ratio at 3.05 and
+// 3.17 SE (errors of 1.4 % and 1.9 %): in a pair its standard error comes out a little small.
+// Four pairs are not told apart yet; for them one effect is named and its parameter must still
+// be within 20 %:
+// - the cut-off beside a curved envelope: the Hoek-Brown fit takes up the BTS rows;
+// - the three effects that act on curve peaks only (rate, end friction, heterogeneity), taken
+//   two at a time: one absorbs the other.
+// Where a curved envelope is hidden beside one of those three, a cut-off is sometimes named as
+// well (seeds 1-2). That is allowed here, since both hidden effects are still named.
+TEST(Discovery, EveryPairOfEffects)
+{
+  struct Hidden
+  {
+    std::string effect, parameter;
+    std::function<double(discovery::Truth &, unsigned)> set; // sets the truth, returns it
+  };
+  const std::vector<Hidden> all = {
+    {"tension_cutoff", "T0_A",
+     [](discovery::Truth &t, unsigned s) {
+       return t.T0 = uniform(s + 200, 0.35, 0.6) * discovery::true_tensile(t);
+     }},
+    {"envelope_curvature", "m_i",
+     [](discovery::Truth &t, unsigned s) {
+       t.sigma_ci = uniform(s + 300, 100, 200);
+       return t.m_i = uniform(s + 400, 10, 25);
+     }},
+    {"machine_compliance", "k_machine",
+     [](discovery::Truth &t, unsigned s) { return t.k_machine = uniform(s + 500, 200, 800); }},
+    {"crack_closure", "E0_ratio",
+     [](discovery::Truth &t, unsigned s) {
+       t.sigma_cc = uniform(s + 700, 10, 30);
+       return t.E0_ratio = uniform(s + 600, 0.3, 0.5);
+     }},
+    {"loading_rate", "rate_A",
+     [](discovery::Truth &t, unsigned s) { return t.rate_A = uniform(s + 800, 0.04, 0.08); }},
+    {"end_friction", "mu",
+     [](discovery::Truth &t, unsigned s) { return t.mu = uniform(s + 900, 0.3, 0.6); }},
+    {"heterogeneity", "weibull_m",
+     [](discovery::Truth &t, unsigned s) { return t.weibull_m = uniform(s + 1000, 6, 12); }},
+  };
+  const std::set<std::string> not_told_apart = {
+    "tension_cutoff+envelope_curvature", "loading_rate+end_friction", "loading_rate+heterogeneity",
+    "end_friction+heterogeneity"};
+  std::vector<unsigned> pair_seeds = {1, 2, 3};
+  if (std::getenv("COSIM_DISCOVERY_SEEDS"))
+    pair_seeds = seeds();
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = i + 1; j < all.size(); ++j)
+      for (unsigned seed : pair_seeds)
+      {
+        auto t          = base(seed);
+        // the truths first: the cut-off's range is a fraction of the tensile strength of the
+        // rock without effects (true_tensile reads t.effects)
+        const double ti = all[i].set(t, seed), tj = all[j].set(t, seed);
+        t.effects       = {all[i].effect, all[j].effect};
+        const std::string name = all[i].effect + "+" + all[j].effect;
+        Diagnosis d;
+        try
+        {
+          d = run(t, seed, name);
+        }
+        catch (const std::exception &e)
+        {
+          ADD_FAILURE() << name << " seed " << seed << ": " << e.what();
+          continue;
+        }
+        report(name, seed, d, all[i].parameter, ti);
+        report(name, seed, d, all[j].parameter, tj);
+        const auto close = [&](const Hidden &h, double truth) {
+          const double v = parameter(d, h.parameter), se = standard_error(d, h.parameter);
+          EXPECT_NEAR(v, truth, 0.2 * truth) << name << " seed " << seed << ' ' << h.parameter;
+          EXPECT_LT(std::abs(v - truth), 3.5 * se) << name << " seed " << seed << ' ' << h.parameter;
+        };
+        if (not_told_apart.count(name))
+        {
+          const bool first = named(d, all[i].effect), second = named(d, all[j].effect);
+          EXPECT_TRUE(first || second) << name << " seed " << seed;
+          if (first)
+            close(all[i], ti);
+          else if (second)
+            close(all[j], tj);
+          continue;
+        }
+        EXPECT_TRUE(named(d, all[i].effect)) << name << " seed " << seed;
+        EXPECT_TRUE(named(d, all[j].effect)) << name << " seed " << seed;
+        if (named(d, all[i].effect))
+          close(all[i], ti);
+        if (named(d, all[j].effect))
+          close(all[j], tj);
+        EXPECT_GE(d.discrepancy_gain, 5.0) << name << " seed " << seed;
+      }
 }
