@@ -19,6 +19,7 @@
 ///   - size (heterogeneity): three specimens of each of four diameters 25, 50, 100 and 150 mm at
 ///     L/D = 2 (a volume ratio of 216 for the Weibull modulus);
 ///   - otherwise: two UCS and one CTCS at 10 MPa.
+///   With two of these effects hidden, both studies are written.
 /// Noise: 2 % relative scatter of every specimen's strength (Truth::strength_scatter) and 0.2 % of
 /// the peak displacement on every curve row (Truth::curve_noise).
 
@@ -146,18 +147,20 @@ namespace discovery
       for (int i = 0; i < n; ++i)
         tests.push_back(condition);
     };
+    // the study of every hidden effect that has one (a laboratory looking for two effects runs
+    // both studies), in this order
     if (t.effects.count("loading_rate"))
       for (double rate : {1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1})
         replicates({{0, rate, 50, 100}}, 3);
-    else if (t.effects.count("end_friction"))
+    if (t.effects.count("end_friction"))
     { // L/D = 2 and 1/2 at one volume (no size effect mixed in)
       replicates({{0, 1e-5, 50, 100}}, 6);
       replicates({{0, 1e-5, 79.37, 39.69}}, 12);
     }
-    else if (t.effects.count("heterogeneity"))
+    if (t.effects.count("heterogeneity"))
       for (double D : {25.0, 50.0, 100.0, 150.0})
         replicates({{0, 1e-5, D, 2 * D}}, 3);
-    else
+    if (tests.empty())
     {
       replicates({{0, 1e-5, 50, 100}}, 2);
       replicates({{10, 1e-5, 50, 100}}, 1);
