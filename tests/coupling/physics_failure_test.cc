@@ -94,8 +94,8 @@ TEST(CoupledBts, FlattenedDiscSplitsFromItsCentreWhereMohrCoulombSays)
   std::printf("flattened disc: onset %.3f MPa at r/R %.3f (closed form %.3f MPa), peak %.3f MPa\n",
               extra(s, "failure_onset_stress_MPa"), extra(s, "failure_onset_radius_ratio"),
               onset_closed * 1e-6, s.peak_stress * 1e-6);
-  // measured r/R 0.05 (0.07 at 2.5 mm, 0.06 at 1 mm); the issue's own bar for a centre split is
-  // 0.2 of the radius (2.5 mm and 0.8 mm: the flat's edges fail first at 0.8 mm, r/R 0.98)
+  // measured r/R 0.05 (0.07 at 2.5 mm, 0.06 at 1 mm); a centre split is taken as one within
+  // 0.2 of the radius (at 0.8 mm the flats' edges fail first, r/R 0.98)
   EXPECT_LT(extra(s, "failure_onset_radius_ratio"), 0.2);
   // measured +2.0 % at 1.25 mm, +0.2 % at 1 mm (+18 % at 2.5 mm, 3.5 particles on a flat): 3 %
   // holds the 1.25 mm value; the line-load value is 3.6 % below the closed form, so a flat that

@@ -364,8 +364,8 @@ TEST(Discovery, Heterogeneity)
 
 // Every pair of the seven effects hidden together (the generator combines them and writes the
 // curve studies of both), seeds 1-3 for each of the 21 pairs, the ranges of the single-effect
-// tests above. Both effects must be named, and each parameter must come within 20 % (the issue's
-// bar for pairs) and within 3.5 of its reported standard errors of the truth.
+// tests above. Both effects must be named, and each parameter must come within 20 % (the target
+// for pairs) and within 3.5 of its reported standard errors of the truth.
 // Measured: the worst error is 12.2 % (mu beside the cut-off, 1.7 SE); 124 of 126 estimates lie
 // within 3 SE. The other two are E0_ratio at 3.05 and 3.17 SE (errors of 1.4 % and 1.9 %): in a
 // pair its standard error comes out a little small.
