@@ -96,7 +96,10 @@ namespace
           }
         EXPECT_NEAR(zmax + 0.5 * dz, R + R * std::cos(a), 1e-12) << dx;
         EXPECT_NEAR(zmin - 0.5 * dz, R - R * std::cos(a), 1e-12) << dx;
-        EXPECT_NEAR(dz / dx, 1.0, 0.1) << dx; // rows within 10 % of the spacing
+        // rows H / round(H / dx) apart, H = D cos(alpha): round() moves H / dx by at most 1/2,
+        // so |dz / dx - 1| <= dx / (2 H - dx) (2.6 % at 2.5 mm)
+        const double H = D * std::cos(a);
+        EXPECT_LE(std::abs(dz / dx - 1.0), dx / (2 * H - dx) * (1 + 1e-12)) << dx;
         double xmax = 0;
         for (const auto &x : lat.positions)
           if (x[2] == zmax)
