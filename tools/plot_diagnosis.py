@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Plots of `cosim diagnose`: envelope.png (strength envelope per group, baseline vs extended vs
 data, compression positive) and curves.png (pre-peak force-displacement points, measured vs the
-baseline and extended surrogate). Usage: plot_diagnosis.py OUTDIR (reads envelope.csv, points.csv)."""
+baseline and extended surrogate) and, after coupled runs, simulations.png (each simulated
+specimen's measured curve against the coupled simulator's baseline and extended cases).
+Usage: plot_diagnosis.py OUTDIR (reads envelope.csv, points.csv, simulations/curves.csv)."""
 import csv
 import os
 import sys
@@ -73,6 +75,45 @@ def main():
         fig.tight_layout()
         fig.savefig(os.path.join(out, "curves.png"), dpi=120)
         plt.close(fig)
+
+    sim = os.path.join(out, "simulations", "curves.csv")
+    if os.path.exists(sim):
+        plot_simulations(rows(sim), os.path.join(out, "simulations.png"))
+
+
+def plot_simulations(sr, path):
+    """One panel a simulated specimen: measured, baseline and extended coupled runs."""
+    names = list(dict.fromkeys(r["specimen"] for r in sr))
+    n = len(names)
+    cols = min(n, 3)
+    nrows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4 * cols, 3.2 * nrows), squeeze=False)
+    style = {"measured": ("o", "k", 2), "baseline": ("--", "tab:blue", 1.2),
+             "extended": ("-", "tab:red", 1.5)}
+    for k, name in enumerate(names):
+        ax = axes[k // cols][k % cols]
+        for source, (ls, colour, w) in style.items():
+            rr = [r for r in sr if r["specimen"] == name and r["source"] == source]
+            if not rr:
+                continue
+            x = [num(r["displacement_mm"]) for r in rr]
+            f = [num(r["force_kN"]) for r in rr]
+            if ls == "o":
+                ax.plot(x, f, ls, color=colour, ms=w, label=source)
+            else:
+                ax.plot(x, f, ls, color=colour, lw=w, label=source)
+        ax.set_title(name, fontsize=8)
+        ax.set_xlabel("displacement [mm]", fontsize=8)
+        ax.set_ylabel("force [kN]", fontsize=8)
+        ax.grid(alpha=0.3)
+        if k == 0:
+            ax.legend(fontsize=7)
+    for k in range(n, nrows * cols):
+        axes[k // cols][k % cols].axis("off")
+    fig.suptitle("Coupled simulator on held-out specimens: measured, baseline, extended", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":

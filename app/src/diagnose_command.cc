@@ -9,9 +9,15 @@
 #include <diagnose/csv.h>
 #include <diagnose/diagnose.h>
 
+#include <app/case_file.h>
+
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <unistd.h>
 
 namespace app
 {
@@ -22,7 +28,8 @@ namespace app
 
   std::string diagnose_help()
   {
-    return "usage: cosim diagnose DATA_DIR [-o OUTDIR] [--force] [--bic-threshold X]\n"
+    return "usage: cosim diagnose DATA_DIR [-o OUTDIR] [--force] [--bic-threshold X] [--coupled-spacing DX]\n"
+           "                      [--simulations N]\n"
            "\n"
            "What the simulation gets wrong on measured data, the cause, the extension and the "
            "gain.\n"
@@ -47,12 +54,52 @@ namespace app
            "  --force              replace an existing OUTDIR written by cosim\n"
            "  --memory-limit GIB   memory a coupled run may use (default 90 % of the available memory)\n"
            "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
-           "  --coupled-spacing DX also run the coupled simulator (run_case, spacing DX [m]) on "
-           "the\n"
-           "                       datum the baseline misses most, baseline and extended rock "
-           "model\n"
-           "                       (minutes per run)\n";
+           "  --coupled-spacing DX also run the coupled simulator (spacing DX [m]; 0.0025: the\n"
+           "                       default cases') on held-out specimens with the baseline and\n"
+           "                       the extended case: one curve of each curve condition, then the\n"
+           "                       strength conditions of the group the baseline misses most\n"
+           "                       (simulations/: the case files and curves; tens of s a run)\n"
+           "  --simulations N      specimens the coupled simulator runs, at most (default 6)\n";
   }
+
+  namespace
+  {
+    /// An empty case file (every key at its default) for the cases of the coupled runs, removed
+    /// when the diagnosis ends.
+    class DefaultCase
+    {
+    public:
+      DefaultCase()
+          : path_(fs::temp_directory_path() / ("cosim-diagnose-" + std::to_string(::getpid()) + ".prm"))
+      {
+        std::ofstream o(path_);
+        o << "# the defaults; cosim diagnose sets the specimen, the rock and the effects\n";
+        if (!o)
+          throw std::runtime_error("cosim diagnose: cannot write " + path_.string());
+      }
+      ~DefaultCase()
+      {
+        std::error_code ec;
+        fs::remove(path_, ec);
+      }
+      DefaultCase(const DefaultCase &)            = delete;
+      DefaultCase &operator=(const DefaultCase &) = delete;
+      /// The reader of the coupled runs' cases: the defaults with the overrides, through the
+      /// case-file reader (so that what runs is what `cosim run` would read).
+      diagnose::CaseReader reader() const
+      {
+        return [path = path_.string()](const std::vector<std::string> &overrides,
+                                       coupling::CaseParameters &parameters, std::string &text) {
+          CaseFile c = read_case_file(path, overrides);
+          parameters = c.parameters;
+          text       = c.used_parameters;
+        };
+      }
+
+    private:
+      fs::path path_;
+    };
+  } // namespace
 
   int diagnose_main(const std::vector<std::string> &args)
   {
@@ -96,11 +143,19 @@ namespace app
             "cosim diagnose: --coupled-spacing takes a particle spacing in m, 0 < dx < 0.01");
         options.coupled_spacing = *v;
       }
+      else if (a == "--simulations")
+      {
+        const auto v = parse_finite_double(next());
+        if (!v || !(*v >= 1 && *v <= 100) || *v != std::floor(*v))
+          throw InputError("cosim diagnose: --simulations takes a whole number of specimens in [1, 100]");
+        options.max_simulations = static_cast<int>(*v);
+      }
       else if (!a.empty() && a[0] == '-')
         throw InputError("cosim diagnose: unknown option '" + diagnose::clip(a) + "'" +
                          did_you_mean(a, {"--output", "--force", "--bic-threshold",
-                                          "--coupled-spacing", "--memory-limit", "--help"}) +
-                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX, --memory-limit GIB");
+                                          "--coupled-spacing", "--simulations", "--memory-limit", "--help"}) +
+                         "; accepted: -o OUTDIR, --force, --bic-threshold X, --coupled-spacing DX, --simulations N, "
+                         "--memory-limit GIB");
       else if (data_dir.empty())
         data_dir = a;
       else
@@ -123,6 +178,12 @@ namespace app
       check_resources(estimate_for_volume(volume, options.coupled_spacing), what, memory_limit,
                       "--memory-limit GIB");
     }
+    std::optional<DefaultCase> default_case;
+    if (options.coupled_spacing > 0)
+    {
+      default_case.emplace();
+      options.read_case = default_case->reader();
+    }
     const diagnose::Diagnosis d = diagnose::diagnose(data, options);
     ResultFolder folder(target, "diagnose");
     const fs::path out = folder.staging();
@@ -134,8 +195,13 @@ namespace app
     std::string ids;
     for (const auto &i : d.identified)
       ids += (ids.empty() ? "" : ", ") + i;
-    std::printf("identified: %s; gain %.3g (held-out %.3g); wrote %s\n", ids.c_str(), d.gain,
-                d.heldout_gain, diagnose::clip(published.string()).c_str());
+    if (d.simulations.empty())
+      std::printf("identified: %s; gain %.3g (held-out %.3g); wrote %s\n", ids.c_str(), d.gain,
+                  d.heldout_gain, diagnose::clip(published.string()).c_str());
+    else
+      std::printf("identified: %s; gain %.3g (held-out %.3g; coupled simulator, held-out %.3g); wrote %s\n",
+                  ids.c_str(), d.gain, d.heldout_gain, d.coupled_gain,
+                  diagnose::clip(published.string()).c_str());
     return 0;
   }
 } // namespace app

@@ -11,7 +11,8 @@
 
 #include <diagnose/calibrate.h>
 #include <diagnose/diagnose.h>
-#include <coupling/run_case.h>
+#include <coupling/errors.h>
+#include <sph/rock_models.h>
 
 #include <algorithm>
 #include <cmath>
@@ -616,135 +617,171 @@ namespace diagnose
         }
       return v;
     }
-    /// Rock of the coupled simulator for a group: baseline (Mohr-Coulomb with the group's c, phi)
-    /// or the extended strength model (refitted UCS, Hoek-Brown, tension cut-off).
-    sph::MaterialParameters coupled_rock(const Data &data, const GroupBase &g,
-                                          const Fitted *extended)
+    /// The rock of a simulated case of specimen `d` of group `g`: the baseline (Mohr-Coulomb
+    /// with the group's UCS and phi, measured E, rigid frictionless platens) with `effects` at
+    /// `v` (the fitted values).
+    SimulatedRock simulated_rock(const Study &s, const GroupBase &g, const Datum &d,
+                                 const EffectSet &effects, const std::map<std::string, double> &v)
     {
-      sph::MaterialParameters r = coupling::case_rock();
-      r.model          = sph::RockModel::mohr_coulomb;
-      r.youngs_modulus = g.E * 1e6;
-      for (const auto &m : data.materials)
-        if (m.group == g.group && m.nu)
-          r.poissons_ratio = *m.nu;
-      for (const auto &m : data.materials)
-        if (m.group == g.group && m.density)
-          r.density = *m.density;
-      const auto mc = [&r](double ucs, double phi) {
-        const double sp = std::sin(phi * pi / 180), cp = std::cos(phi * pi / 180);
-        r.friction_angle = phi * pi / 180;
-        r.cohesion       = ucs * 1e6 * (1 - sp) / (2 * cp);
-        r.hb_sigma_ci    = ucs * 1e6;
-      };
-      if (extended == nullptr)
+      SimulatedRock r;
+      r.E = g.E;
+      for (const auto &m : s.data.materials)
+        if (m.group == g.group)
+        {
+          if (m.nu)
+            r.nu = *m.nu;
+          if (m.density)
+            r.density = *m.density;
+        }
+      r.ucs = v.count("UCS_" + g.group) ? v.at("UCS_" + g.group) : g.ucs;
+      r.phi = v.count("phi") ? v.at("phi") : g.phi;
+      const auto has = [&effects](const char *e) { return effects.count(e) > 0; };
+      if (has("envelope_curvature"))
       {
-        mc(g.ucs, g.phi);
-        return r;
+        r.hoek_brown = true;
+        r.m_i        = v.at("m_i");
       }
-      const auto v     = values_of(*extended);
-      const double ucs = v.count("UCS_" + g.group) ? v.at("UCS_" + g.group) : g.ucs;
-      if (extended->effects.count("envelope_curvature"))
+      if (has("tension_cutoff"))
+        r.tensile = v.at("T0_ratio") * r.ucs;
+      if (has("crack_closure"))
       {
-        r.model         = sph::RockModel::hoek_brown;
-        r.hb_sigma_ci   = ucs * 1e6;
-        r.hb_mb         = v.at("m_i");
+        r.closure_ratio  = v.at("E0_ratio");
+        r.closure_stress = v.at("sigma_cc");
       }
-      else
-        mc(ucs, v.count("phi") ? v.at("phi") : g.phi);
-      if (extended->effects.count("tension_cutoff"))
+      if (has("machine_compliance"))
+        r.k_frame = v.at("k_machine");
+      if (has("end_friction"))
+        r.friction = v.at("mu");
+      if (has("heterogeneity"))
       {
-        r.tensile_strength = v.at("T0_ratio") * ucs * 1e6;
-        if (r.model == sph::RockModel::mohr_coulomb)
-          r.model = sph::RockModel::mohr_coulomb_cutoff;
+        const double f = sph::rock::weakest_link_strength_factor(d.volume_ratio, v.at("weibull_m"));
+        r.strength_factor *= f;
+        r.notes.push_back("heterogeneity: strengths x " + std::to_string(f) +
+                          " for this specimen's volume (" + std::to_string(d.volume_ratio) +
+                          " x a 50 x 100 mm core), Weibull m " + std::to_string(v.at("weibull_m")));
+      }
+      if (has("loading_rate") && d.strain_rate > 0)
+      {
+        const double f = sph::rock::rate_strength_factor(d.strain_rate, 1e-5, v.at("rate_A"));
+        r.strength_factor *= f;
+        r.notes.push_back("loading rate: strengths x " + std::to_string(f) +
+                          " at this specimen's strain rate " + std::to_string(d.strain_rate) +
+                          " /s (A " + std::to_string(v.at("rate_A")) +
+                          " per decade from 1e-5 /s); the simulator loads at its own "
+                          "quasi-static rate");
       }
       return r;
     }
 
-    /// Runs the coupled simulator (run_case) on every strength condition (test, confinement) of
-    /// the group whose datum the baseline misses most, for the baseline and the extended rock,
-    /// and records their peaks and errors against the measured mean of the condition. A
-    /// compressive run goes on to twice the strain at which the model's own envelope is reached
-    /// (q / E), so that a steep baseline envelope is not cut off by the end strain.
-    void coupled_check(const Study &s, const Surrogate &base_model, const Surrogate &ext_model,
-                       const Fitted &current, Diagnosis &out)
+    /// The specimens the coupled simulator runs: one curve of each curve condition, then one
+    /// strength row of each strength condition of the group whose datum the baseline misses
+    /// most, the conditions the baseline misses most first, Options::max_simulations in all.
+    /// Each carries its baseline rock and its extended rock fitted without it.
+    std::vector<SimulatorTarget> simulator_targets(const Study &s, const Surrogate &base_model,
+                                                   const Fitted &current, const bool extended)
     {
-      const bool extended = out.identified != std::vector<std::string>{"none"};
-      const Datum *worst  = nullptr;
-      double worst_r      = -1;
+      const int n_rows = static_cast<int>(s.data.strengths.size());
+      const auto miss  = [&](const Datum &d) {
+        return std::abs(base_model.predict(d, {}) - d.measured) / s.noise(d);
+      };
+      const Datum *worst = nullptr;
       for (const auto &d : s.all)
-        if (d.kind == Datum::strength)
-          if (const double r = std::abs(base_model.predict(d, {}) - d.measured) / s.noise(d);
-              r > worst_r)
-          {
-            worst_r = r;
-            worst   = &d;
-          }
-      const GroupBase *g = nullptr;
-      for (const auto &x : s.groups)
-        if (x.group == worst->group)
-          g = &x;
-      // the conditions: (test, confinement) -> measured values
-      std::map<std::pair<std::string, long>, std::vector<double>> conditions;
+        if (d.kind == Datum::strength && (worst == nullptr || miss(d) > miss(*worst)))
+          worst = &d;
+      // candidate specimens: (curve?, baseline miss, source)
+      std::map<int, const Datum *> first_of_condition; // condition -> its first specimen's datum
+      std::map<int, double> condition_miss;
       for (const auto &d : s.all)
-        if (d.kind == Datum::strength && d.group == g->group && d.test != "TXE")
-          conditions[{d.test, d.test == "BTS" ? 0L : std::lround(d.sigma3 * 10)}].push_back(
-            d.measured);
-      const auto rb = coupled_rock(s.data, *g, nullptr);
-      const auto re = coupled_rock(s.data, *g, extended ? &current : nullptr);
-      double ss_b = 0, ss_e = 0, ss_sb = 0, ss_se = 0;
-      int n = 0;
-      for (const auto &[key, values] : conditions)
       {
-        const auto &[test, s3_10] = key;
-        const double s3           = s3_10 / 10.0;
-        const double meas = std::accumulate(values.begin(), values.end(), 0.0) / values.size();
-        Datum d;
-        d.test                = test;
-        d.group               = g->group;
-        d.sigma3              = test == "BTS" ? -meas : s3;
-        d.measured            = meas;
-        const double sb       = base_model.predict(d, {});
-        const double se       = extended ? ext_model.predict(d, current.result.values) : sb;
-        const auto end_strain = [&](double sigma1) {
-          return test == "BTS" ? 0.006 : std::max(0.01, 2.0 * (sigma1 - s3) / g->E);
-        };
-        const CoupledPeak pb =
-          coupled_peak(test, s3, rb, s.options.coupled_spacing, end_strain(sb));
-        const CoupledPeak pe =
-          extended ? coupled_peak(test, s3, re, s.options.coupled_spacing, end_strain(se)) : pb;
-        std::string name = test + "_" + g->group;
-        if (test != "UCS" && test != "BTS")
-          name += "_" + std::to_string(std::lround(s3)) + "MPa";
-        for (auto [e, p, sur] :
-             {std::tuple{&out.baseline, &pb, sb}, std::tuple{&out.extended, &pe, se}})
-        {
-          e->coupled[name + "_measured_MPa"]   = meas;
-          e->coupled[name + "_peak_MPa"]       = p->peak_MPa;
-          e->coupled[name + "_surrogate_MPa"]  = sur;
-          e->coupled[name + "_relative_error"] = (p->peak_MPa - meas) / meas;
-          if (test == "BTS")
-            e->coupled[name + "_displacement_at_peak_mm"] = p->displacement_at_peak_mm;
-          if (p->stop_reason == "end strain" && test != "BTS")
-            out.notes.push_back("coupled " + name + " (" + e->model.substr(0, 8) +
-                                "...): stopped at the end strain, its peak is a lower bound");
-        }
-        ss_b += std::pow(pb.peak_MPa - meas, 2);
-        ss_e += std::pow(pe.peak_MPa - meas, 2);
-        ss_sb += std::pow(sb - meas, 2);
-        ss_se += std::pow(se - meas, 2);
-        ++n;
+        const bool curve = d.source >= n_rows;
+        if (!curve && (d.kind != Datum::strength || worst == nullptr || d.group != worst->group))
+          continue;
+        if (!first_of_condition.count(d.condition))
+          first_of_condition[d.condition] = &d;
+        if (first_of_condition[d.condition]->source == d.source)
+          condition_miss[d.condition] = std::max(condition_miss[d.condition], miss(d));
       }
-      out.baseline.coupled["strength_rms_MPa"]           = std::sqrt(ss_b / n);
-      out.extended.coupled["strength_rms_MPa"]           = std::sqrt(ss_e / n);
-      out.baseline.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_sb / n);
-      out.extended.coupled["surrogate_strength_rms_MPa"] = std::sqrt(ss_se / n);
-      out.coupled_gain                                   = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
-      out.notes.push_back("coupled check: every strength condition of group " + g->group +
-                          " (the group of the datum the baseline misses most), run_case at "
-                          "spacing " +
-                          std::to_string(s.options.coupled_spacing) +
-                          " m; effects outside the rock model (compliance, friction, rate, "
-                          "closure, size) are not in it");
+      std::vector<std::pair<std::pair<int, double>, const Datum *>> order;
+      for (const auto &[c, d] : first_of_condition)
+        order.push_back({{d->source >= n_rows ? 0 : 1, -condition_miss[c]}, d});
+      std::sort(order.begin(), order.end(),
+                [](const auto &a, const auto &b) { return a.first < b.first; });
+      if (static_cast<int>(order.size()) > s.options.max_simulations)
+        order.resize(static_cast<std::size_t>(s.options.max_simulations));
+
+      std::vector<SimulatorTarget> targets;
+      for (const auto &[key, d] : order)
+      {
+        SimulatorTarget t;
+        t.test  = d->test;
+        t.group = d->group;
+        const GroupBase *g = nullptr;
+        for (const auto &x : s.groups)
+          if (x.group == d->group)
+            g = &x;
+        if (g == nullptr || g->ucs <= 0)
+          continue; // a group without strength: nothing to simulate to failure
+        double surrogate_peak = 0; // sigma1 [MPa] the baseline surrogate expects
+        if (d->source >= n_rows)
+        {
+          const Curve &c = s.data.curves[static_cast<std::size_t>(d->source - n_rows)];
+          t.name         = c.file;
+          t.curve        = &c;
+          t.diameter     = c.diameter;
+          t.length       = c.length;
+          t.sigma3       = c.test == "BTS" ? 0 : c.confining;
+          t.platen       = c.platen_displacement;
+          t.has_peak     = c.failed;
+          for (const auto &p : s.all)
+            if (p.source == d->source)
+            {
+              if (p.kind == Datum::curve_point)
+              {
+                t.points.push_back(p);
+                t.point_noise.push_back(s.noise(p));
+              }
+              else
+              {
+                t.measured_peak = p.measured;
+                t.peak_noise    = s.noise(p);
+              }
+            }
+        }
+        else
+        {
+          t.name          = d->where;
+          t.sigma3        = d->test == "BTS" ? 0 : d->sigma3;
+          t.measured_peak = d->measured;
+          t.peak_noise    = s.noise(*d);
+          if (d->test == "BTS")
+            t.length = 25; // a standard disc, 50 x 25 mm
+        }
+        if (d->kind == Datum::strength)
+          surrogate_peak = base_model.predict(*d, {});
+        // a compressive run goes on to twice the larger of the measured and the expected strain
+        // at failure (a steep baseline envelope is not cut short); a disc to d / D = 0.006
+        double eps = 2.0 * (std::max(surrogate_peak, t.measured_peak) - t.sigma3) / g->E;
+        if (t.curve != nullptr && !t.curve->displacement.empty())
+          eps = std::max(eps, 1.5 * *std::max_element(t.curve->displacement.begin(),
+                                                     t.curve->displacement.end()) /
+                                t.length);
+        t.end_strain = t.test == "BTS" ? 0.006 : std::clamp(eps, 0.01, 0.5);
+        t.baseline   = simulated_rock(s, *g, *d, {}, {});
+        if (extended)
+        {
+          // the extended model fitted without this specimen, from the all-data optimum
+          std::vector<Datum> train;
+          for (const auto &x : s.all)
+            if (x.source != d->source)
+              train.push_back(x);
+          const Fitted f = fit_model(s, current.effects, current.refit, train, values_of(current), false);
+          t.extended = simulated_rock(s, *g, *d, current.effects, values_of(f));
+        }
+        else
+          t.extended = t.baseline;
+        targets.push_back(t);
+      }
+      return targets;
     }
 
   } // namespace
@@ -1022,10 +1059,12 @@ namespace diagnose
     }
     out.notes.erase(std::remove(out.notes.begin(), out.notes.end(), std::string()),
                     out.notes.end());
-    // the coupled simulator on every strength condition of the group the baseline misses most
-    // (optional: seconds to a minute per run at 5 mm)
+    // the coupled simulator on held-out specimens, baseline and extended case (optional: tens of
+    // seconds a run at 2.5 mm)
     if (options.coupled_spacing > 0 && has_strength)
-      coupled_check(s, base_model, ext_model, current, out);
+      simulate(simulator_targets(s, base_model, current,
+                                 out.identified != std::vector<std::string>{"none"}),
+               options, out);
     // tables for the plots: envelopes from the largest tension to the largest confinement
     {
       const bool ext_on            = out.identified != std::vector<std::string>{"none"};

@@ -102,19 +102,45 @@ namespace diagnose
                 const std::function<double(const Datum &)> &noise,
                 const std::vector<std::vector<double>> &starts, bool polish = true);
 
-  /// What one coupled run gives the diagnosis.
-  struct CoupledPeak
+  /// The rock and the effects of one simulated case, as the case file states them (MPa, deg,
+  /// kN/mm; compression +).
+  struct SimulatedRock
   {
-    double peak_MPa                = 0; ///< peak axial stress (BTS: 2P / (pi D t)) [MPa]
-    double displacement_at_peak_mm = 0; ///< platen displacement at the peak [mm]
-    std::string stop_reason;
+    double E = 0, nu = 0.25, density = 2700;
+    bool hoek_brown = false;
+    double ucs = 0, phi = 30;   ///< Mohr-Coulomb through the UCS (Hoek-Brown: sigma_ci = ucs)
+    double m_i      = 0;        ///< Hoek-Brown m_i
+    double tensile  = 0;        ///< tension cut-off [MPa]; 0: none
+    /// Strength factor of the specimen's size and strain rate (weakest link, rate law), applied
+    /// to the UCS and the cut-off (the simulator loads at its own quasi-static rate) [-]
+    double strength_factor = 1;
+    double closure_ratio = 1, closure_stress = 1; ///< E0 / E [-], sigma_cc [MPa]
+    double k_frame  = 0; ///< load frame [kN/mm]; 0: rigid
+    double friction = 0; ///< platen friction coefficient [-]
+    std::vector<std::string> notes; ///< comment lines for the case file
   };
 
-  /// One coupled run_case (UCS, CTCS at s3 > 0, or BTS; 50 mm specimens, 100 mm long or 25 mm
-  /// thick) with `rock` at particle spacing `spacing` [m], stopped at `end_strain` (BTS: d / D)
-  /// or 20 % past the peak.
-  CoupledPeak coupled_peak(const std::string &test, double s3_MPa,
-                           const sph::MaterialParameters &rock, double spacing, double end_strain);
+  /// A measured specimen for the coupled simulator, with the baseline and the extended rock (the
+  /// extended one fitted without this specimen).
+  struct SimulatorTarget
+  {
+    std::string name, test, group;
+    double diameter = 50, length = 100, sigma3 = 0; ///< [mm, mm, MPa]
+    double measured_peak = 0, peak_noise = 1;       ///< sigma1 or BTS and its noise [MPa]
+    bool has_peak        = true;                    ///< false: a curve without failure
+    bool platen          = true; ///< curve displacement read at the platen (else gauge)
+    std::vector<Datum> points;   ///< pre-peak curve points (Datum::measured: displacement)
+    std::vector<double> point_noise; ///< [mm]
+    const Curve *curve = nullptr;    ///< the whole measured curve, or none (a strength row)
+    double end_strain  = 0.01;       ///< where the run stops at the latest (BTS: d / D)
+    SimulatedRock baseline, extended;
+  };
+
+  /// Runs the coupled simulator on each target with its baseline and its extended rock at
+  /// options.coupled_spacing (cases read by options.read_case); fills out.simulations, the
+  /// baseline's and extended model's ModelError::coupled and out.coupled_gain.
+  void simulate(const std::vector<SimulatorTarget> &targets, const Options &options,
+                Diagnosis &out);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

@@ -114,20 +114,33 @@ namespace diagnose
         << fmt(d.baseline.discrepancy) << " -> " << fmt(d.extended.discrepancy) << " SDs, gain "
         << fmt(d.discrepancy_gain)
         << " (the all-data gain above is diluted by the data both models fit to the noise).\n";
-      if (!d.baseline.coupled.empty())
+      if (!d.simulations.empty())
       {
-        r << "\nCoupled simulator (run_case, coarse spacing) on every strength condition of one "
-             "group: strength RMS "
-          << fmt(d.baseline.coupled.at("strength_rms_MPa")) << " -> "
-          << fmt(d.extended.coupled.at("strength_rms_MPa")) << " MPa, coupled gain "
-          << fmt(d.coupled_gain) << " (the surrogate on the same conditions: "
-          << fmt(d.baseline.coupled.at("surrogate_strength_rms_MPa")) << " -> "
-          << fmt(d.extended.coupled.at("surrogate_strength_rms_MPa"))
-          << " MPa). Peaks against the measured:\n\n"
-             "| quantity | baseline | extended |\n|---|---|---|\n";
-        for (const auto &[k, v] : d.baseline.coupled)
-          r << "| " << k << " | " << fmt(v, 4) << " | "
-            << (d.extended.coupled.count(k) ? fmt(d.extended.coupled.at(k), 4) : "-") << " |\n";
+        const auto coupled = [](const ModelError &e, const char *k) {
+          return e.coupled.count(k) ? fmt(e.coupled.at(k)) : std::string("-");
+        };
+        r << "\n## In the coupled simulator\n\nEach specimen below was run as a case of the "
+             "coupled simulator (`simulations/*.prm`, runnable with `cosim run`) with the "
+             "baseline and with the extended model, whose parameters were fitted without that "
+             "specimen (held out). Error: RMS over the specimens of each one's RMS residual (its "
+             "peak and its pre-peak curve points at the measured forces) divided by the data "
+             "noise.\n\n"
+          << "| model | error (held-out) | strength RMS [MPa] | curve RMS [mm] |\n|---|---|---|---|\n"
+          << "| baseline | " << coupled(d.baseline, "error") << " | "
+          << coupled(d.baseline, "strength_rms_MPa") << " | " << coupled(d.baseline, "curve_rms_mm")
+          << " |\n| extended | " << coupled(d.extended, "error") << " | "
+          << coupled(d.extended, "strength_rms_MPa") << " | " << coupled(d.extended, "curve_rms_mm")
+          << " |\n\nCoupled simulator's held-out gain: " << fmt(d.coupled_gain) << "\n\n"
+          << "| specimen | test | D x L [mm] | sigma3 [MPa] | spacing [mm] | measured peak "
+             "[MPa] | baseline peak | extended peak | curve points | error baseline -> "
+             "extended |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        for (const auto &m : d.simulations)
+          r << "| " << m.name << " | " << m.test << " | " << fmt(m.diameter_mm, 4) << " x "
+            << fmt(m.length_mm, 4) << " | " << fmt(m.confining_MPa, 4) << " | "
+            << fmt(1e3 * m.particle_spacing, 3) << " | " << fmt(m.measured_peak_MPa, 4) << " | "
+            << fmt(m.baseline.peak_MPa, 4) << " | " << fmt(m.extended.peak_MPa, 4) << " | "
+            << m.n_points << " | " << fmt(m.baseline.error) << " -> " << fmt(m.extended.error)
+            << " |\n";
       }
       r << "\n## Candidates\n\n| effect | applicable | Delta BIC | Delta BIC vs baseline | error "
            "fit before -> after | "
@@ -189,6 +202,25 @@ namespace diagnose
     j["discrepancy_gain"]    = num(d.discrepancy_gain);
     j["n_discrepancy"]       = d.n_discrepancy;
     j["coupled_gain"]        = num(d.coupled_gain);
+    j["simulations"]         = Json::array();
+    for (const auto &m : d.simulations)
+    {
+      Json o = {{"specimen", m.name},
+                {"test", m.test},
+                {"group", m.group},
+                {"diameter_mm", num(m.diameter_mm)},
+                {"length_mm", num(m.length_mm)},
+                {"confining_MPa", num(m.confining_MPa)},
+                {"particle_spacing_m", num(m.particle_spacing)},
+                {"measured_peak_MPa", num(m.measured_peak_MPa)},
+                {"curve_points", m.n_points}};
+      for (const auto &[k, run] : {std::pair{"baseline", &m.baseline}, std::pair{"extended", &m.extended}})
+        o[k] = {{"peak_MPa", num(run->peak_MPa)},
+                {"error", num(run->error)},
+                {"curve_rms_mm", m.n_points > 0 ? num(run->curve_rms_mm) : Json(nullptr)},
+                {"stop_reason", run->stop_reason}};
+      j["simulations"].push_back(o);
+    }
     j["noise"]               = Json::object();
     for (const auto &[k, v] : d.noise)
       j["noise"][k] = num(v);
@@ -204,5 +236,27 @@ namespace diagnose
     write(out / "report.md", report_md(d, data_dir));
     write(out / "envelope.csv", d.envelope_table);
     write(out / "points.csv", d.points_table);
+    if (d.simulations.empty())
+      return;
+    // the cases the coupled simulator ran and their curves beside the measured ones
+    fs::create_directories(out / "simulations");
+    std::ostringstream curves;
+    curves << "specimen,source,displacement_mm,force_kN\n";
+    for (std::size_t i = 0; i < d.simulations.size(); ++i)
+    {
+      const Simulation &m = d.simulations[i];
+      const std::string stem = "s" + std::to_string(i + 1);
+      write(out / "simulations" / (stem + "_baseline.prm"), m.baseline.case_text);
+      write(out / "simulations" / (stem + "_extended.prm"), m.extended.case_text);
+      const auto rows = [&](const char *source, const std::vector<double> &x,
+                            const std::vector<double> &f) {
+        for (std::size_t k = 0; k < x.size(); ++k)
+          curves << stem << ',' << source << ',' << x[k] << ',' << f[k] << '\n';
+      };
+      rows("measured", m.measured_displacement_mm, m.measured_force_kN);
+      rows("baseline", m.baseline.displacement_mm, m.baseline.force_kN);
+      rows("extended", m.extended.displacement_mm, m.extended.force_kN);
+    }
+    write(out / "simulations" / "curves.csv", curves.str());
   }
 } // namespace diagnose

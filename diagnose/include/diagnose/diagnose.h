@@ -8,10 +8,16 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace coupling
+{
+  struct CaseParameters;
+}
 
 namespace diagnose
 {
@@ -66,11 +72,21 @@ namespace diagnose
   /// The fixed effect names (docs/design.md), `none` excluded.
   const std::vector<std::string> &effect_names();
 
+  /// Reads a case of the coupled simulator: the default case with `overrides` ("Section/Key=value",
+  /// in order) applied and checked, into `parameters`, and the complete case file of its values
+  /// into `text` (the app's case-file reader; throws coupling::InputError).
+  using CaseReader = std::function<void(const std::vector<std::string> &overrides,
+                                        coupling::CaseParameters &parameters, std::string &text)>;
+
   /// Options of one study.
   struct Options
   {
-    double bic_threshold   = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
-    double coupled_spacing = 0;  ///< > 0: check baseline/extended with run_case at this dx [m]
+    double bic_threshold = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
+    /// > 0: run the coupled simulator on held-out specimens at this particle spacing [m] (a
+    /// cylinder wider than 20 spacings is run at diameter / 20), baseline and extended case
+    double coupled_spacing = 0;
+    int max_simulations    = 6;  ///< specimens the coupled simulator runs, at most
+    CaseReader read_case;        ///< needed when coupled_spacing > 0
   };
 
   /// A fitted parameter with its standard error (from the Jacobian at the optimum).
@@ -107,6 +123,31 @@ namespace diagnose
     std::map<std::string, double> coupled; ///< coupled-simulator errors, when run
   };
 
+  /// One coupled run of a simulated specimen: its case file and what it gave.
+  struct SimulatedRun
+  {
+    std::string case_text;                     ///< the complete case file it ran
+    std::vector<double> displacement_mm, force_kN; ///< its curve (deviatoric force; BTS: the load)
+    double peak_MPa = 0; ///< sigma1 at the peak (BTS: 2P / (pi D t)) [MPa]
+    double error    = 0; ///< RMS of (simulated - measured) / noise over the specimen's data [-]
+    double curve_rms_mm = 0; ///< RMS displacement error on the pre-peak curve points [mm]
+    std::string stop_reason;
+  };
+
+  /// A measured specimen the coupled simulator ran, held out of the fit of the extended model's
+  /// parameters: measured against the baseline case and the extended case.
+  struct Simulation
+  {
+    std::string name; ///< the curve file or "file:line" of the strength row
+    std::string test, group;
+    double diameter_mm = 0, length_mm = 0, confining_MPa = 0;
+    double particle_spacing = 0; ///< [m]
+    double measured_peak_MPa = 0;
+    int n_points = 0; ///< pre-peak curve points compared (0: a strength row, its peak only)
+    std::vector<double> measured_displacement_mm, measured_force_kN; ///< the measured curve
+    SimulatedRun baseline, extended;
+  };
+
   /// The study's result.
   struct Diagnosis
   {
@@ -121,8 +162,10 @@ namespace diagnose
     /// where the baseline is wrong, undiluted by the data both models fit to the noise [-]
     double discrepancy_gain = 1;
     int n_discrepancy       = 0; ///< test conditions (or curve points) in the discrepancy
-    /// Coupled-simulator strength RMS, baseline / extended (ModelError::coupled), when run [-]
+    /// The coupled simulator's held-out gain: RMS normalised error of the baseline case over
+    /// the extended case's on the simulated specimens (Diagnosis::simulations), when run [-]
     double coupled_gain = 1;
+    std::vector<Simulation> simulations;
     std::vector<FittedValue> extended_parameters;
     std::map<std::string, double> noise; ///< per data kind, what it came from in notes
     std::vector<std::string> notes;
