@@ -62,6 +62,21 @@ namespace app
            "  --simulations N      specimens the coupled simulator runs, at most (default 6)\n";
   }
 
+  diagnose::CaseReader case_reader(const std::string &defaults)
+  {
+    return [defaults](const std::vector<std::string> &overrides, coupling::CaseParameters &parameters,
+                      std::string &text) {
+      std::vector<std::string> named = {"Test/Name=diagnose"};
+      named.insert(named.end(), overrides.begin(), overrides.end());
+      CaseFile c = read_case_file(defaults, named);
+      parameters = c.parameters;
+      text       = c.used_parameters;
+      const std::string at = " (" + defaults + ")";
+      if (const auto i = text.find(at); i != std::string::npos)
+        text.replace(i, at.size(), " (written by cosim diagnose)");
+    };
+  }
+
   namespace
   {
     /// An empty case file (every key at its default) for the cases of the coupled runs, removed
@@ -84,17 +99,7 @@ namespace app
       }
       DefaultCase(const DefaultCase &)            = delete;
       DefaultCase &operator=(const DefaultCase &) = delete;
-      /// The reader of the coupled runs' cases: the defaults with the overrides, through the
-      /// case-file reader (so that what runs is what `cosim run` would read).
-      diagnose::CaseReader reader() const
-      {
-        return [path = path_.string()](const std::vector<std::string> &overrides,
-                                       coupling::CaseParameters &parameters, std::string &text) {
-          CaseFile c = read_case_file(path, overrides);
-          parameters = c.parameters;
-          text       = c.used_parameters;
-        };
-      }
+      diagnose::CaseReader reader() const { return case_reader(path_.string()); }
 
     private:
       fs::path path_;

@@ -323,9 +323,20 @@ namespace coupling
     if (ctcs_ && t < plan_.confinement_time)
     {
       // follow the hydrostatic compression of the rock while the pressure ramps up, so that the
-      // axial stress stays equal to the confining pressure: d(eps)/dt = (1 - 2 nu)/E dp/dt
+      // axial stress stays equal to the confining pressure: d(eps)/dt = (1 - 2 nu)/E_t dp/dt,
+      // E_t the tangent modulus at the pressure p(t) of the ramp (E without crack closure; with
+      // it, the rock's moduli are scaled by E_t / E at p, the most compressive principal stress,
+      // sph/crack_closure.h: a platen that followed the intact E would leave a gap that the
+      // loading then closes as a spurious toe)
       const double dp_dt = prm_.confining_pressure / plan_.confinement_time;
-      const double rate = (1.0 - 2.0 * prm_.rock.poissons_ratio) / prm_.rock.youngs_modulus * dp_dt;
+      const sph::MaterialParameters &r = prm_.rock;
+      const double E_t =
+        r.closure_modulus_ratio < 1
+          ? sph::rock::crack_closure_tangent_modulus(dp_dt * t, r.youngs_modulus,
+                                                     r.closure_modulus_ratio * r.youngs_modulus,
+                                                     r.closure_stress)
+          : r.youngs_modulus;
+      const double rate = (1.0 - 2.0 * r.poissons_ratio) / E_t * dp_dt;
       return -rate * prm_.length;
     }
     const double t_load = t - plan_.confinement_time;

@@ -673,9 +673,10 @@ namespace diagnose
       return r;
     }
 
-    /// The specimens the coupled simulator runs: one curve of each curve condition, then one
-    /// strength row of each strength condition of the group whose datum the baseline misses
-    /// most, the conditions the baseline misses most first, Options::max_simulations in all.
+    /// The specimens the coupled simulator runs: the first specimen of each curve condition and
+    /// of each strength condition of the group whose datum the baseline misses most, where the
+    /// baseline misses it (its peak or a curve point) by more than three noise SDs, the worst
+    /// missed first, Options::max_simulations in all.
     /// Each carries its baseline rock and its extended rock fitted without it.
     std::vector<SimulatorTarget> simulator_targets(const Study &s, const Surrogate &base_model,
                                                    const Fitted &current, const bool extended)
@@ -701,9 +702,13 @@ namespace diagnose
         if (first_of_condition[d.condition]->source == d.source)
           condition_miss[d.condition] = std::max(condition_miss[d.condition], miss(d));
       }
-      std::vector<std::pair<std::pair<int, double>, const Datum *>> order;
+      // only where the baseline is wrong, by more than three of the data's noise (a specimen
+      // both models meet measures the simulator's discretisation, not the effect), the worst
+      // missed first
+      std::vector<std::pair<double, const Datum *>> order;
       for (const auto &[c, d] : first_of_condition)
-        order.push_back({{d->source >= n_rows ? 0 : 1, -condition_miss[c]}, d});
+        if (condition_miss[c] > 3)
+          order.push_back({-condition_miss[c], d});
       std::sort(order.begin(), order.end(),
                 [](const auto &a, const auto &b) { return a.first < b.first; });
       if (static_cast<int>(order.size()) > s.options.max_simulations)

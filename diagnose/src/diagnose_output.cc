@@ -122,8 +122,10 @@ namespace diagnose
         r << "\n## In the coupled simulator\n\nEach specimen below was run as a case of the "
              "coupled simulator (`simulations/*.prm`, runnable with `cosim run`) with the "
              "baseline and with the extended model, whose parameters were fitted without that "
-             "specimen (held out). Error: RMS over the specimens of each one's RMS residual (its "
-             "peak and its pre-peak curve points at the measured forces) divided by the data "
+             "specimen (held out); the specimens are those the baseline misses by more than three "
+             "noise SDs, the worst first. Error: RMS over the specimens of each one's error, the "
+             "RMS of its two parts: the peak's residual and the RMS residual of its pre-peak "
+             "curve points (displacement at the measured forces), each divided by the data's "
              "noise.\n\n"
           << "| model | error (held-out) | strength RMS [MPa] | curve RMS [mm] |\n|---|---|---|---|\n"
           << "| baseline | " << coupled(d.baseline, "error") << " | "
@@ -131,16 +133,19 @@ namespace diagnose
           << " |\n| extended | " << coupled(d.extended, "error") << " | "
           << coupled(d.extended, "strength_rms_MPa") << " | " << coupled(d.extended, "curve_rms_mm")
           << " |\n\nCoupled simulator's held-out gain: " << fmt(d.coupled_gain) << "\n\n"
-          << "| specimen | test | D x L [mm] | sigma3 [MPa] | spacing [mm] | measured peak "
+          << "| case files | specimen | test | D x L [mm] | sigma3 [MPa] | spacing [mm] | measured peak "
              "[MPa] | baseline peak | extended peak | curve points | error baseline -> "
-             "extended |\n|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const auto &m : d.simulations)
-          r << "| " << m.name << " | " << m.test << " | " << fmt(m.diameter_mm, 4) << " x "
+             "extended |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for (std::size_t i = 0; i < d.simulations.size(); ++i)
+        {
+          const Simulation &m = d.simulations[i];
+          r << "| s" << i + 1 << "_* | " << m.name << " | " << m.test << " | " << fmt(m.diameter_mm, 4) << " x "
             << fmt(m.length_mm, 4) << " | " << fmt(m.confining_MPa, 4) << " | "
             << fmt(1e3 * m.particle_spacing, 3) << " | " << fmt(m.measured_peak_MPa, 4) << " | "
             << fmt(m.baseline.peak_MPa, 4) << " | " << fmt(m.extended.peak_MPa, 4) << " | "
             << m.n_points << " | " << fmt(m.baseline.error) << " -> " << fmt(m.extended.error)
             << " |\n";
+        }
       }
       r << "\n## Candidates\n\n| effect | applicable | Delta BIC | Delta BIC vs baseline | error "
            "fit before -> after | "

@@ -28,12 +28,12 @@ namespace diagnose
 
     /// Particle spacing of a specimen's run [m]: the one asked for, coarsened so that a cylinder
     /// has at most 20 particles across (a 150 mm core at 2.5 mm would be 1.3 million particles;
-    /// the rock model has no length scale of its own in its strength), and fine enough that a
-    /// disc has 10 through its thickness.
+    /// the rock model has no length scale of its own in its strength), and fine enough that 10
+    /// span the specimen's smallest dimension (the case reader's rule).
     double spacing_of(const SimulatorTarget &t, const double spacing)
     {
       const double dx = std::max(spacing, t.diameter * 1e-3 / 20.0);
-      return t.test == "BTS" ? std::min(dx, t.length * 1e-3 / 10.0) : dx;
+      return std::min(dx, std::min(t.diameter, t.length) * 1e-3 / 10.0);
     }
 
     /// The case file's "Section/Key=value" lines of a specimen with a rock.
@@ -160,21 +160,28 @@ namespace diagnose
       for (const auto &n : r.notes)
         head += "# " + n + "\n";
       run.case_text = head + run.case_text;
-      double ss = 0, ss_curve = 0;
-      int n     = 0;
+      // a specimen gives two measurements, its strength and its deformation curve: its error is
+      // the RMS of the two parts (peak residual / noise; RMS over the curve's points of residual
+      // / noise), so twenty points of one curve do not outweigh the strength
+      double ss_parts = 0, ss_points = 0, ss_curve = 0;
+      int parts       = 0;
       if (t.has_peak)
       {
-        ss += std::pow((run.peak_MPa - t.measured_peak) / t.peak_noise, 2);
-        ++n;
+        ss_parts += std::pow((run.peak_MPa - t.measured_peak) / t.peak_noise, 2);
+        ++parts;
       }
       for (std::size_t k = 0; k < t.points.size(); ++k)
       {
         const double e = displacement_at(run, t.points[k].force) - t.points[k].measured;
-        ss += std::pow(e / t.point_noise[k], 2);
+        ss_points += std::pow(e / t.point_noise[k], 2);
         ss_curve += e * e;
-        ++n;
       }
-      run.error        = n > 0 ? std::sqrt(ss / n) : 0;
+      if (!t.points.empty())
+      {
+        ss_parts += ss_points / t.points.size();
+        ++parts;
+      }
+      run.error        = parts > 0 ? std::sqrt(ss_parts / parts) : 0;
       run.curve_rms_mm = t.points.empty() ? 0 : std::sqrt(ss_curve / t.points.size());
     }
   } // namespace
@@ -184,6 +191,12 @@ namespace diagnose
   {
     if (!options.read_case)
       throw std::logic_error("diagnose: Options::read_case is needed to run the coupled simulator");
+    if (targets.empty())
+    {
+      out.notes.push_back("coupled simulator: not run; the baseline misses no specimen by more "
+                          "than three of the data's noise SDs");
+      return;
+    }
     // a case runs once (the baselines of one geometry and confinement repeat)
     std::map<std::string, SimulatedRun> done;
     const auto run = [&](const SimulatorTarget &t, const SimulatedRock &r, const double dx) {

@@ -723,9 +723,9 @@ namespace sph::rock
   // ---- Extensions for `cosim diagnose` (pure functions; stresses compression-positive here,
   // ---- as the closure and strength laws are written in the rock-mechanics literature). The
   // ---- surrogate calls crack_closure_strain, weakest_link_strength_factor and
-  // ---- rate_strength_factor; the pointwise laws (crack_closure_tangent_modulus,
-  // ---- weibull_strength_factor, weibull_coefficient_of_variation) are not used by the SPH solver:
-  // ---- diagnose_unit_tests checks the closed forms against them (integral, Monte Carlo).
+  // ---- rate_strength_factor; the SPH rock's closure elasticity (crack_closure.h) and the CTCS
+  // ---- confinement ramp call crack_closure_tangent_modulus; diagnose_unit_tests checks the
+  // ---- closed forms against the pointwise laws (integral, Monte Carlo).
 
   /// Crack-closure (toe) elasticity: tangent Young's modulus at compressive stress p normal to the
   /// cracks [Pa], 1/E_t = 1/E + (1/E0 - 1/E) exp(-p / sigma_cc): E0 (<= E) at zero stress, the
