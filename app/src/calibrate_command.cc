@@ -20,7 +20,7 @@ namespace app
 
   std::string calibrate_help()
   {
-    return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian] [--data DIR] [--csv]\n"
+    return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian | --envelope] [--data DIR] [--csv]\n"
            "\n"
            "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
            "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
@@ -37,6 +37,15 @@ namespace app
            "the measured BTS (M1 at 1.25 mm: 15.62 MPa). Runs use them with\n"
            "--set \"Rock/Strength parameters=brazilian\".\n"
            "\n"
+           "With --envelope it fits the curved envelope of Rock/Strength parameters = envelope\n"
+           "(Rock/Model = hoek-brown) to all of a group's strengths: generalised Hoek-Brown\n"
+           "  sigma1 = sigma3 + sigma_ci (m_b sigma3 / sigma_ci + 1)^a,  sigma_ci = UCS,\n"
+           "with a tension cut-off at the BTS; m_b and a minimise the squared relative misses of the\n"
+           "triaxial strengths (Table 3's measured envelope at 10, 30, 50 MPa, groups M8-M10) and of\n"
+           "the BTS (the disc centre's state 3 t, -t on the envelope or the cut-off); without\n"
+           "triaxial strengths a = 0.5 and m_b puts the disc centre's state at failure on it. It\n"
+           "prints the fit and its misses.\n"
+           "\n"
            "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
            "and BTS) next to the calibrated values stored there (Table 4).\n"
            "\n"
@@ -46,16 +55,66 @@ namespace app
            "  --bts MPa      a BTS of your own (with --ucs)\n"
            "  --data DIR     data folder (default: the data cosim ships)\n"
            "  --brazilian    calibrate to the disc centre's stress state (see above)\n"
+           "  --envelope     the Hoek-Brown envelope with cut-off through all strengths (see above)\n"
            "  --csv          print comma-separated values instead of an aligned table\n"
            "\n"
            "Exit status: 0 done, 2 bad input.\n";
   }
 
+  namespace
+  {
+    /// `cosim calibrate --envelope`: the Hoek-Brown envelope with cut-off of each group (or of a
+    /// UCS and BTS) and its misses [%] of the UCS, the BTS (the disc) and the triaxial strengths.
+    int envelope_table(const std::string &group, const bool has_ucs, const double ucs, const double bts,
+                       const std::string &data, const bool csv)
+    {
+      const char *head = csv ? "%s,%s,%s,%s,%s,%s,%s,%s,%s\n" : "%-8s %9s %9s %9s %8s %7s %9s %8s  %s\n";
+      std::printf(head, "group", "UCS_MPa", "BTS_MPa", "sigma_ci", "m_b", "a", "cutoff", "BTS_err%",
+                  "triaxial sigma3:err% (sigma1 measured -> envelope)");
+      const auto row = [&](const std::string &name, const double u, const double b,
+                           const std::vector<diagnose::TriaxialStrength> &t) {
+        if (!(b > 0 && u > 4 * b))
+          throw InputError("cosim calibrate --envelope: group " + name + ": need UCS > 4 BTS > 0 (MPa)");
+        const auto h = diagnose::calibrate_hoek_brown(u, b, t);
+        std::string misses;
+        for (const auto &x : t)
+        {
+          char m[96];
+          std::snprintf(m, sizeof m, "%s%g:%+.2f (%.1f -> %.1f)", misses.empty() ? "" : (csv ? ";" : " "),
+                        x.sigma3, 100 * (diagnose::hoek_brown_sigma1(h, x.sigma3) / x.sigma1 - 1), x.sigma1,
+                        diagnose::hoek_brown_sigma1(h, x.sigma3));
+          misses += m;
+        }
+        const char *fmt = csv ? "%s,%.2f,%.2f,%.2f,%.3f,%.4f,%.2f,%+.2f,%s\n"
+                              : "%-8s %9.2f %9.2f %9.2f %8.3f %7.4f %9.2f %+8.2f  %s\n";
+        std::printf(fmt, name.c_str(), u, b, h.sigma_ci, h.m_b, h.a, h.tensile,
+                    100 * (diagnose::hoek_brown_disc_strength(h) / b - 1), misses.empty() ? "-" : misses.c_str());
+      };
+      if (has_ucs)
+      {
+        row(group.empty() ? "-" : group, ucs, bts, {});
+        return 0;
+      }
+      const MaterialTable table = MaterialTable::read(data);
+      if (!group.empty())
+        table.find(group);
+      for (const auto &g : table.groups())
+        if (group.empty() || g.group == group)
+        {
+          std::vector<diagnose::TriaxialStrength> t = diagnose::triaxial_strengths(g);
+          for (auto &x : t)
+            x = {x.sigma3 / 1e6, x.sigma1 / 1e6};
+          row(g.group, g.ucs / 1e6, g.bts / 1e6, t);
+        }
+      return 0;
+    }
+  } // namespace
+
   int calibrate_main(const std::vector<std::string> &args)
   {
     std::string group, data = data_directory().string();
     double ucs = 0, bts = 0;
-    bool has_ucs = false, has_bts = false, csv = false, brazilian = false;
+    bool has_ucs = false, has_bts = false, csv = false, brazilian = false, envelope = false;
     ArgumentCursor cursor("calibrate", args);
     while (!cursor.done())
     {
@@ -72,11 +131,17 @@ namespace app
         csv = true;
       else if (a == "--brazilian")
         brazilian = true;
+      else if (a == "--envelope")
+        envelope = true;
       else
         throw InputError("cosim calibrate: unknown option '" + diagnose::clip(a) + "'" +
-                         did_you_mean(a, {"--group", "--ucs", "--bts", "--brazilian", "--data", "--csv", "--help"}) +
-                         "; accepted: --group, --ucs, --bts, --brazilian, --data, --csv");
+                         did_you_mean(a, {"--group", "--ucs", "--bts", "--brazilian", "--envelope", "--data", "--csv", "--help"}) +
+                         "; accepted: --group, --ucs, --bts, --brazilian, --envelope, --data, --csv");
     }
+    if (brazilian && envelope)
+      throw InputError("cosim calibrate: --brazilian and --envelope are two calibrations; give one");
+    if (envelope)
+      return envelope_table(group, has_ucs, ucs, bts, data, csv);
     if (has_ucs != has_bts)
       throw InputError("cosim calibrate: give both --ucs and --bts (in MPa), or neither");
 

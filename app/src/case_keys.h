@@ -52,7 +52,7 @@ namespace app::keys
   struct RockOverrides
   {
     std::optional<double> youngs_modulus, poissons_ratio, cohesion, friction_angle_deg,
-      tensile_strength, ucs, residual_friction_angle_deg;
+      tensile_strength, ucs, residual_friction_angle_deg, hb_mi, hb_a;
   };
 
   /// Declares the keys of one section into a ParameterHandler and records them in `keys`.

@@ -30,8 +30,8 @@ namespace app::keys
                {sph::RockModel::elastic, sph::RockModel::mohr_coulomb, sph::RockModel::mohr_coulomb_cutoff,
                 sph::RockModel::hoek_brown},
                "constitutive model of the rock");
-    s.add_choice("Strength parameters", c.strength_source, "calibrated|measured|brazilian",
-                 "c, phi from Table 4 (calibrated to UCS and BTS), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian)");
+    s.add_choice("Strength parameters", c.strength_source, "calibrated|measured|brazilian|envelope",
+                 "c, phi from Table 4 (calibrated to UCS and BTS), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
     s.add("Data directory", c.data_directory,
           "folder with table3_fitted_parameters.csv, table4_calibrated.csv; empty = cases/data");
     s.add<double>("Density", m.density, "[kg/m^3] (not in the paper: a typical basalt value)",
@@ -69,9 +69,15 @@ namespace app::keys
                ? std::string()
                : "must be in (0, c/tan(phi) = " + format(apex) + "] Pa for mohr-coulomb-cutoff";
     });
-    s.add<double>("Hoek-Brown mi", m.hb_mb, "Hoek-Brown m_i [-] (basalt about 25)");
+    s.add_optional("Hoek-Brown mi", o.hb_mi,
+                   "Hoek-Brown m_i [-]; empty = 25 (basalt), or the fit of Rock/Strength parameters = envelope");
     s.check("Hoek-Brown mi", [&m]() {
-      return m.model != sph::RockModel::hoek_brown || (m.hb_mb > 0 && m.hb_mb < 100) ? "" : "must be in (0, 100) for hoek-brown";
+      return m.model != sph::RockModel::hoek_brown || (m.hb_mb > 0 && m.hb_mb < 200) ? "" : "must be in (0, 200) for hoek-brown";
+    });
+    s.add_optional("Hoek-Brown a", o.hb_a,
+                   "Hoek-Brown exponent a [-]; empty = 0.5 (intact rock), or the fit of Rock/Strength parameters = envelope");
+    s.check("Hoek-Brown a", [&m]() {
+      return m.model != sph::RockModel::hoek_brown || (m.hb_a >= 0.3 && m.hb_a < 1) ? "" : "must be in [0.3, 1) for hoek-brown";
     });
     s.add_optional("UCS", o.ucs, "uniaxial strength sigma_ci [Pa]; empty = from Rock/Group");
     s.check("UCS", [&m]() {
@@ -197,6 +203,22 @@ namespace app::keys
       group_c   = b.cohesion;
       group_phi = b.friction_angle;
     }
+    else if (c.strength_source == "envelope")
+    {
+      if (m.model != sph::RockModel::hoek_brown)
+        fail("Rock/Strength parameters", "envelope fits a Hoek-Brown envelope: set Rock/Model = hoek-brown");
+      if (o.hb_mi || o.hb_a)
+        fail(o.hb_mi ? "Rock/Hoek-Brown mi" : "Rock/Hoek-Brown a",
+             "is fitted by Rock/Strength parameters = envelope: leave it empty, or choose calibrated");
+      if (!(group.ucs > 4 * group.bts))
+        fail("Rock/Strength parameters", "envelope needs UCS > 4 BTS (group " + c.group + ")");
+      const diagnose::HoekBrownStrength h =
+        diagnose::calibrate_hoek_brown(o.ucs.value_or(group.ucs), group.bts, diagnose::triaxial_strengths(group));
+      o.hb_mi = h.m_b;
+      o.hb_a  = h.a;
+      if (!o.tensile_strength)
+        o.tensile_strength = h.tensile;
+    }
     else if (c.strength_source == "measured")
     {
       if (!group.measured_cohesion)
@@ -215,6 +237,8 @@ namespace app::keys
     c.ucs            = o.ucs.value_or(group.ucs);
     m.hb_sigma_ci    = c.ucs;
     c.bts            = group.bts;
+    m.hb_mb          = o.hb_mi.value_or(25.0);
+    m.hb_a           = o.hb_a.value_or(0.5);
     const bool cutoff  = m.model == sph::RockModel::mohr_coulomb_cutoff;
     m.tensile_strength = o.tensile_strength.value_or(cutoff ? group.bts : 0.0);
     const bool needs_mc = m.model == sph::RockModel::mohr_coulomb || cutoff;

@@ -208,8 +208,10 @@ namespace diagnose
     j["n_discrepancy"]       = d.n_discrepancy;
     j["coupled_gain"]        = num(d.coupled_gain);
     j["simulations"]         = Json::array();
-    for (const auto &m : d.simulations)
+    for (std::size_t i = 0; i < d.simulations.size(); ++i)
     {
+      const Simulation &m = d.simulations[i];
+      const std::string stem = "simulations/s" + std::to_string(i + 1);
       Json o = {{"specimen", m.name},
                 {"test", m.test},
                 {"group", m.group},
@@ -220,7 +222,8 @@ namespace diagnose
                 {"measured_peak_MPa", num(m.measured_peak_MPa)},
                 {"curve_points", m.n_points}};
       for (const auto &[k, run] : {std::pair{"baseline", &m.baseline}, std::pair{"extended", &m.extended}})
-        o[k] = {{"peak_MPa", num(run->peak_MPa)},
+        o[k] = {{"case_file", stem + "_" + k + ".prm"},
+                {"peak_MPa", num(run->peak_MPa)},
                 {"error", num(run->error)},
                 {"curve_rms_mm", m.n_points > 0 ? num(run->curve_rms_mm) : Json(nullptr)},
                 {"stop_reason", run->stop_reason}};

@@ -1,5 +1,7 @@
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
+
+#include <cmath>
 #include <diagnose/text_input.h>
 #include <coupling/run_case.h>
 
@@ -118,5 +120,17 @@ namespace diagnose
       if (g.measured_cohesion)
         out += (out.empty() ? "" : ", ") + g.group;
     return out.empty() ? "none" : out;
+  }
+
+  std::vector<TriaxialStrength> triaxial_strengths(const MaterialGroup &group)
+  {
+    std::vector<TriaxialStrength> t;
+    if (!group.measured_cohesion || !group.measured_friction_angle)
+      return t;
+    const double phi = *group.measured_friction_angle * 3.14159265358979323846 / 180.0;
+    const double N   = (1 + std::sin(phi)) / (1 - std::sin(phi));
+    for (const double s3 : {10e6, 30e6, 50e6})
+      t.push_back({s3, 2 * *group.measured_cohesion * std::sqrt(N) + N * s3});
+    return t;
   }
 } // namespace diagnose

@@ -161,6 +161,18 @@ TEST(BadInput, MeasuredStrengthOfAGroupWithout)
                    {"Rock/Strength parameters", "group M1", "M8, M9, M10"});
 }
 
+TEST(BadInput, EnvelopeNeedsHoekBrownAndFitsItsOwnMi)
+{
+  Sandbox box;
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Strength parameters=envelope"},
+                   {"Rock/Strength parameters", "Rock/Model = hoek-brown"});
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+                         "Rock/Strength parameters=envelope", "--set", "Rock/Hoek-Brown mi=20"},
+                   {"Rock/Hoek-Brown mi", "fitted by Rock/Strength parameters = envelope"});
+  expect_bad_input(box, {"calibrate", "--envelope", "--brazilian"}, {"--brazilian and --envelope"});
+  expect_bad_input(box, {"calibrate", "--envelope", "--ucs", "40", "--bts", "10"}, {"UCS > 4 BTS"});
+}
+
 TEST(BadInput, ConfiningPressureOnUcs)
 {
   Sandbox box;

@@ -640,6 +640,14 @@ TEST(HostileInput, DiagnoseEmptyBicThresholdRefused)
   expect_refused(box.dir(), {"diagnose", "data", "--bic-threshold", ""}, {"--bic-threshold", "empty value"});
 }
 
+TEST(HostileInput, DiagnoseSimulationsNotAWholeNumberRefused)
+{
+  Sandbox box;
+  diagnose_data(box.dir() / "data");
+  for (const char *v : {"0", "2.5", "101", "nan"})
+    expect_refused(box.dir(), {"diagnose", "data", "--simulations", v}, {"--simulations", "whole number"});
+}
+
 TEST(HostileInput, DataTableWithUtf8BomAccepted)
 {
   Sandbox box;

@@ -4,6 +4,8 @@
 /// table3_fitted_parameters.csv (E, nu, measured c and phi where known, UCS, BTS) and
 /// table4_calibrated.csv (c and phi back-calculated from UCS and BTS). Units here are SI.
 
+#include <diagnose/calibrate.h>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,4 +49,8 @@ namespace diagnose
   private:
     std::vector<MaterialGroup> groups_;
   };
+
+  /// The triaxial strengths of a group: its measured Mohr-Coulomb envelope (Table 3's c, phi) at
+  /// Table 1's confining pressures 10, 30 and 50 MPa [Pa]; none where it has no measured c, phi.
+  std::vector<TriaxialStrength> triaxial_strengths(const MaterialGroup &group);
 } // namespace diagnose
