@@ -5,6 +5,7 @@ baseline and extended surrogate) and, after coupled runs, simulations.png (each 
 specimen's measured curve against the coupled simulator's baseline and extended cases).
 Usage: plot_diagnosis.py OUTDIR (reads envelope.csv, points.csv, simulations/curves.csv)."""
 import csv
+import json
 import os
 import sys
 
@@ -78,10 +79,35 @@ def main():
 
     sim = os.path.join(out, "simulations", "curves.csv")
     if os.path.exists(sim):
-        plot_simulations(rows(sim), os.path.join(out, "simulations.png"))
+        plot_simulations(rows(sim), os.path.join(out, "simulations.png"),
+                         simulation_titles(os.path.join(out, "diagnosis.json")))
 
 
-def plot_simulations(sr, path):
+def simulation_titles(path):
+    """Panel titles by case-file stem (s1, s2, ...): test, size, confinement, from diagnosis.json."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            sims = json.load(f).get("simulations", [])
+    except (OSError, ValueError):
+        return {}
+    titles = {}
+    for i, m in enumerate(sims):
+        # the measured peak as a force, for specimens without a measured curve [kN]
+        peak, d, l = m.get("measured_peak_MPa"), m.get("diameter_mm", 0), m.get("length_mm", 0)
+        if isinstance(peak, (int, float)):
+            if m.get("test") == "BTS":
+                force = peak * 3.141592653589793 * d * l / 2 / 1e3
+            else:
+                force = (peak - m.get("confining_MPa", 0)) * 3.141592653589793 * d * d / 4 / 1e3
+            titles["peak s%d" % (i + 1)] = force
+        t = "s%d: %s %g x %g mm" % (i + 1, m.get("test", ""), m.get("diameter_mm", 0), m.get("length_mm", 0))
+        if m.get("test") == "CTCS":
+            t += ", sigma3 %g MPa" % m.get("confining_MPa", 0)
+        titles["s%d" % (i + 1)] = t
+    return titles
+
+
+def plot_simulations(sr, path, titles):
     """One panel a simulated specimen: measured, baseline and extended coupled runs."""
     names = list(dict.fromkeys(r["specimen"] for r in sr))
     n = len(names)
@@ -102,7 +128,10 @@ def plot_simulations(sr, path):
                 ax.plot(x, f, ls, color=colour, ms=w, label=source)
             else:
                 ax.plot(x, f, ls, color=colour, lw=w, label=source)
-        ax.set_title(name, fontsize=8)
+        if not any(r["specimen"] == name and r["source"] == "measured" for r in sr) \
+                and ("peak " + name) in titles:
+            ax.axhline(titles["peak " + name], color="k", ls=":", lw=1, label="measured peak")
+        ax.set_title(titles.get(name, name), fontsize=8)
         ax.set_xlabel("displacement [mm]", fontsize=8)
         ax.set_ylabel("force [kN]", fontsize=8)
         ax.grid(alpha=0.3)

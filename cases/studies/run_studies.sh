@@ -71,6 +71,19 @@ run() {
     # 5 mm (10 particles across): 18 runs in the time budget of a shared machine
     ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.005" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
+    # one curved envelope through UCS, BTS and triaxial strength (Rock/Strength parameters =
+    # envelope, cosim calibrate --envelope), groups M8-M10 at the default 2.5 mm
+    envelope-ucs) study envelope-ucs $ucs --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --groups M8,M9,M10 ;;
+    envelope-bts) study envelope-bts $bts --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --groups M8,M9,M10 ;;
+    envelope-ctcs) study envelope-ctcs $ctcs --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --key "Test/Confining pressure" \
+                    --values 10e6,30e6,50e6 --groups M8,M9,M10 ;;
+    # the disc's strength under the envelope's tension cut-off against the softening after it
+    envelope-bts-softening) study envelope-bts-softening $bts --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --set "Rock/Group=M10" \
+                    --key "Rock/Softening strain" --values 0.0002,0.0005,0.002 ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
@@ -78,7 +91,7 @@ run() {
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
-     basalt-ucs-compliance)
+     basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
