@@ -689,7 +689,7 @@ namespace diagnose
       for (const auto &d : s.all)
         if (d.kind == Datum::strength && (worst == nullptr || miss(d) > miss(*worst)))
           worst = &d;
-      // candidate specimens: (curve?, baseline miss, source)
+      // the conditions (of curves, and of the worst-missed group's strength rows) and their misses
       std::map<int, const Datum *> first_of_condition; // condition -> its first specimen's datum
       std::map<int, double> condition_miss;
       for (const auto &d : s.all)
@@ -697,6 +697,9 @@ namespace diagnose
         const bool curve = d.source >= n_rows;
         if (!curve && (d.kind != Datum::strength || worst == nullptr || d.group != worst->group))
           continue;
+        if (d.test == "TXE")
+          continue; // the simulator runs no triaxial extension test
+
         if (!first_of_condition.count(d.condition))
           first_of_condition[d.condition] = &d;
         if (first_of_condition[d.condition]->source == d.source)
