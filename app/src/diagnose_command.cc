@@ -74,6 +74,10 @@ namespace app
       const std::string at = " (" + defaults + ")";
       if (const auto i = text.find(at); i != std::string::npos)
         text.replace(i, at.size(), " (written by cosim diagnose)");
+      // the rock is set by explicit keys, not looked up in a group's tables
+      const std::string from = "# Rock values resolved from group ";
+      if (const auto i = text.find(from); i != std::string::npos)
+        text.replace(i, text.find('\n', i) - i, "# Rock values: the explicit keys below (Rock/Group is the default's, unused for them)");
     };
   }
 
