@@ -210,10 +210,15 @@ namespace app::keys
       if (o.hb_mi || o.hb_a)
         fail(o.hb_mi ? "Rock/Hoek-Brown mi" : "Rock/Hoek-Brown a",
              "is fitted by Rock/Strength parameters = envelope: leave it empty, or choose calibrated");
-      if (!(group.ucs > 4 * group.bts))
-        fail("Rock/Strength parameters", "envelope needs UCS > 4 BTS (group " + c.group + ")");
-      const diagnose::HoekBrownStrength h =
-        diagnose::calibrate_hoek_brown(o.ucs.value_or(group.ucs), group.bts, diagnose::triaxial_strengths(group));
+      const double ucs = o.ucs.value_or(group.ucs);
+      if (!(ucs > 4 * group.bts && group.bts > 0))
+        fail("Rock/Strength parameters", "envelope needs UCS > 4 BTS > 0 (group " + c.group + ": UCS " +
+                                           format(ucs) + " Pa, BTS " + format(group.bts) + " Pa)");
+      const auto triaxial = diagnose::triaxial_strengths(group);
+      for (const auto &x : triaxial)
+        if (!(x.sigma1 > x.sigma3))
+          fail("Rock/Strength parameters", "envelope: group " + c.group + "'s measured c, phi give no triaxial strength");
+      const diagnose::HoekBrownStrength h = diagnose::calibrate_hoek_brown(ucs, group.bts, triaxial);
       o.hb_mi = h.m_b;
       o.hb_a  = h.a;
       if (!o.tensile_strength)
