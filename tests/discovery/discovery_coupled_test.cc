@@ -102,7 +102,9 @@ namespace
                             std::to_string(std::hash<std::string>{}(effect + std::to_string(seed)));
     discovery::write_folder(t, dir, seed, true);
     const std::string defaults = dir + "-defaults.prm";
-    std::ofstream(defaults) << "# every key at its default\n";
+    // every key at its default but the threads: one (ctest runs two tests side by side on two
+    // cores; two threads each would oversubscribe them)
+    std::ofstream(defaults) << "subsection SPH\n  set Threads = 1\nend\n";
     Options o;
     o.coupled_spacing = spacing;
     o.max_simulations = 2;
