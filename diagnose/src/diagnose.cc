@@ -673,6 +673,48 @@ namespace diagnose
       return r;
     }
 
+    /// The measured points of a BTS curve for the simulator's disc, which the surrogate cannot
+    /// model (the disc's displacement is not a material point's): the platen displacement at
+    /// forces of 5-90 % of the peak, about 20 pre-peak points, noise that of the curve; a
+    /// peak-only curve gives its displacement at the peak, as uncertain as its strength (the
+    /// data's relative strength noise).
+    void disc_points(const Study &s, const Curve &c, SimulatorTarget &t)
+    {
+      const std::size_t ip = peak_index(c);
+      const double fp      = c.force[ip];
+      const auto add = [&](const double force, const double displacement, const double noise) {
+        Datum p;
+        p.kind     = Datum::curve_point;
+        p.test     = "BTS";
+        p.group    = c.group;
+        p.force    = force;
+        p.measured = displacement;
+        p.where    = c.file;
+        t.points.push_back(p);
+        t.point_noise.push_back(noise);
+      };
+      if (c.peak_only())
+      {
+        if (c.failed && c.displacement[ip] > 0)
+          add(fp, c.displacement[ip], s.strength_rel_noise * c.displacement[ip]);
+        return;
+      }
+      const double noise = curve_noise(c);
+      std::size_t last   = 0;
+      for (int k = 0; k < 20; ++k)
+      {
+        const double target = fp * (0.05 + 0.85 * k / 19.0);
+        std::size_t best    = 0;
+        for (std::size_t i = 0; i <= ip; ++i)
+          if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
+            best = i;
+        if (k > 0 && best == last)
+          continue;
+        last = best;
+        add(c.force[best], c.displacement[best], noise); // as the curve points of make_data
+      }
+    }
+
     /// The specimens the coupled simulator runs: the first specimen of each curve condition and
     /// of each strength condition of the group whose datum the baseline misses most, where the
     /// baseline misses it (its peak or a curve point) by more than three noise SDs, the worst
@@ -708,10 +750,14 @@ namespace diagnose
       // only where the baseline is wrong, by more than three of the data's noise (a specimen
       // both models meet measures the simulator's discretisation, not the effect), the worst
       // missed first
+      // A BTS curve is kept whatever the surrogate says, after the missed ones: the surrogate
+      // has no disc displacement, only the simulator can tell whether it is right.
       std::vector<std::pair<double, const Datum *>> order;
       for (const auto &[c, d] : first_of_condition)
         if (condition_miss[c] > 3)
           order.push_back({-condition_miss[c], d});
+        else if (d->source >= n_rows && d->test == "BTS")
+          order.push_back({0.0, d});
       std::sort(order.begin(), order.end(),
                 [](const auto &a, const auto &b) { return a.first < b.first; });
       if (static_cast<int>(order.size()) > s.options.max_simulations)
@@ -754,6 +800,8 @@ namespace diagnose
                 t.peak_noise    = s.noise(p);
               }
             }
+          if (c.test == "BTS")
+            disc_points(s, c, t);
         }
         else
         {
