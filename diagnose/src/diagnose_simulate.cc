@@ -264,5 +264,21 @@ namespace diagnose
       " m, a cylinder at most 20 particles across); each extended case's parameters fitted "
       "without its specimen; size and rate enter as a strength factor of the specimen (the "
       "simulator loads at its own quasi-static rate)");
+    // where the extended case does worse than the baseline, the simulator does not carry what
+    // the surrogate named: say where, so that the gain is not read as the surrogate's
+    std::string worse;
+    for (std::size_t i = 0; i < out.simulations.size(); ++i)
+    {
+      const Simulation &m = out.simulations[i];
+      if (m.extended.error > 1.05 * m.baseline.error + 0.5)
+        worse += (worse.empty() ? "" : ", ") + ("s" + std::to_string(i + 1)) + " (" + m.name + ", " +
+                 m.test + ": error " + num(m.baseline.error) + " -> " + num(m.extended.error) + ")";
+    }
+    if (!worse.empty())
+      out.notes.push_back("coupled simulator: the extended case is worse than the baseline on " +
+                          worse +
+                          ": there the simulator does not reproduce the named effect as the "
+                          "surrogate models it (platen friction, for one, weakens the simulated "
+                          "cylinder: README, Known limitations)");
   }
 } // namespace diagnose
