@@ -48,6 +48,8 @@ namespace app
            "  diagnosis.json  identified, candidates, baseline, extended, gain\n"
            "  report.md       candidates table, named cause and evidence, fitted values, gain\n"
            "  envelope.csv, points.csv, envelope.png, curves.png\n"
+           "  with --coupled-spacing: coupled_gain and simulations in diagnosis.json,\n"
+           "  simulations.png, simulations/ (s<i>_baseline.prm, s<i>_extended.prm, curves.csv)\n"
            "\n"
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
@@ -56,8 +58,9 @@ namespace app
            "  --bic-threshold X    Delta BIC an effect must earn (default 10)\n"
            "  --coupled-spacing DX also run the coupled simulator (spacing DX [m]; 0.0025: the\n"
            "                       default cases') on held-out specimens with the baseline and\n"
-           "                       the extended case: one curve of each curve condition, then the\n"
-           "                       strength conditions of the group the baseline misses most\n"
+           "                       the extended case: those the baseline misses by more than 3\n"
+           "                       noise SDs (curves; strength rows of the group it misses most),\n"
+           "                       worst first, and every BTS curve (its displacement) after them\n"
            "                       (simulations/: the case files and curves; tens of s a run)\n"
            "  --simulations N      specimens the coupled simulator runs, at most (default 6)\n";
   }

@@ -74,19 +74,15 @@ namespace diagnose
       return ss;
     }
 
-    /// The m_b in [0.1, 200] of least misfit at the envelope's a, by golden section on log m_b
-    /// (the misfit is unimodal in m_b: sigma1 rises and the disc strength falls with it).
-    double best_mb(HoekBrownStrength h, const double bts, const std::vector<TriaxialStrength> &t)
+    /// The x in [lo, hi] where the unimodal f is least, by golden section down to an interval of
+    /// `tol` (at most `iterations` steps).
+    template <class F>
+    double golden_minimum(const F &f, double lo, double hi, const double tol, const int iterations)
     {
       const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-      double lo = std::log(0.1), hi = std::log(200.0);
       double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-      const auto f = [&](const double x) {
-        h.m_b = std::exp(x);
-        return misfit(h, bts, t);
-      };
       double f1 = f(x1), f2 = f(x2);
-      for (int i = 0; i < 100 && hi - lo > 1e-12; ++i)
+      for (int i = 0; i < iterations && hi - lo > tol; ++i)
         if (f1 < f2)
         {
           hi = x2, x2 = x1, f2 = f1;
@@ -97,7 +93,18 @@ namespace diagnose
           lo = x1, x1 = x2, f1 = f2;
           x2 = lo + g * (hi - lo), f2 = f(x2);
         }
-      return std::exp(0.5 * (lo + hi));
+      return 0.5 * (lo + hi);
+    }
+
+    /// The m_b in [0.1, 200] of least misfit at the envelope's a, by golden section on log m_b
+    /// (the misfit is unimodal in m_b: sigma1 rises and the disc strength falls with it).
+    double best_mb(HoekBrownStrength h, const double bts, const std::vector<TriaxialStrength> &t)
+    {
+      const auto f = [&](const double x) {
+        h.m_b = std::exp(x);
+        return misfit(h, bts, t);
+      };
+      return std::exp(golden_minimum(f, std::log(0.1), std::log(200.0), 1e-12, 100));
     }
   } // namespace
 
@@ -122,9 +129,8 @@ namespace diagnose
       h.m_b = best_mb(h, bts, triaxial);
       return h;
     }
-    // a by golden section over [0.4, 0.95], m_b the best at each a
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double lo = 0.4, hi = 0.95;
+    // a over [0.4, 0.95] (m_b the best at each a): a scan, then a golden section near its best
+    const double lo = 0.4, hi = 0.95;
     const auto f = [&](const double a) {
       HoekBrownStrength t = h;
       t.a                 = a;
@@ -139,20 +145,7 @@ namespace diagnose
       if (v < best_f)
         best_a = a, best_f = v;
     }
-    lo = std::max(0.4, best_a - 0.025), hi = std::min(0.95, best_a + 0.025);
-    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo), f1 = f(x1), f2 = f(x2);
-    for (int i = 0; i < 60 && hi - lo > 1e-10; ++i)
-      if (f1 < f2)
-      {
-        hi = x2, x2 = x1, f2 = f1;
-        x1 = hi - g * (hi - lo), f1 = f(x1);
-      }
-      else
-      {
-        lo = x1, x1 = x2, f1 = f2;
-        x2 = lo + g * (hi - lo), f2 = f(x2);
-      }
-    h.a   = 0.5 * (lo + hi);
+    h.a   = golden_minimum(f, std::max(lo, best_a - 0.025), std::min(hi, best_a + 0.025), 1e-10, 60);
     h.m_b = best_mb(h, bts, triaxial);
     return h;
   }

@@ -96,6 +96,25 @@ namespace diagnose
                       2e-3 * std::abs(c.displacement[ip])); // floor: 0.2 % of the peak displacement
     }
 
+    /// The rows of a curve nearest to `n` forces evenly between 5 and 90 % of its peak force,
+    /// before the peak, a row taken once.
+    std::vector<std::size_t> pre_peak_rows(const Curve &c, const int n)
+    {
+      const std::size_t ip = peak_index(c);
+      std::vector<std::size_t> rows;
+      for (int k = 0; k < n; ++k)
+      {
+        const double target = c.force[ip] * (0.05 + 0.85 * k / (n - 1.0));
+        std::size_t best    = 0;
+        for (std::size_t i = 0; i <= ip; ++i)
+          if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
+            best = i;
+        if (rows.empty() || rows.back() != best)
+          rows.push_back(best);
+      }
+      return rows;
+    }
+
     struct Study
     {
       const Data &data;
@@ -287,17 +306,8 @@ namespace diagnose
         // pre-peak points between 5 and 90 % of the peak force, evenly in force: about 20 a
         // curve, fewer (down to 8) where a long programme would give more than 160 in all (its
         // information is in the peaks; the fit's cost grows with the points)
-        std::size_t last = 0;
-        for (int k = 0; k < n_points; ++k)
+        for (const std::size_t best : pre_peak_rows(c, n_points))
         {
-          const double target = fp * (0.05 + 0.85 * k / (n_points - 1.0));
-          std::size_t best    = 0;
-          for (std::size_t i = 0; i <= ip; ++i)
-            if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
-              best = i;
-          if (k > 0 && best == last)
-            continue;
-          last       = best;
           Datum q    = p;
           q.kind     = Datum::curve_point;
           q.force    = c.force[best];
@@ -700,19 +710,8 @@ namespace diagnose
         return;
       }
       const double noise = curve_noise(c);
-      std::size_t last   = 0;
-      for (int k = 0; k < 20; ++k)
-      {
-        const double target = fp * (0.05 + 0.85 * k / 19.0);
-        std::size_t best    = 0;
-        for (std::size_t i = 0; i <= ip; ++i)
-          if (std::abs(c.force[i] - target) < std::abs(c.force[best] - target))
-            best = i;
-        if (k > 0 && best == last)
-          continue;
-        last = best;
-        add(c.force[best], c.displacement[best], noise); // as the curve points of make_data
-      }
+      for (const std::size_t best : pre_peak_rows(c, 20)) // as the curve points of make_data
+        add(c.force[best], c.displacement[best], noise);
     }
 
     /// The specimens the coupled simulator runs: the first specimen of each curve condition and

@@ -123,7 +123,8 @@ namespace diagnose
              "coupled simulator (`simulations/*.prm`, runnable with `cosim run`) with the "
              "baseline and with the extended model, whose parameters were fitted without that "
              "specimen (held out); the specimens are those the baseline misses by more than three "
-             "noise SDs, the worst first. Error: RMS over the specimens of each one's error, the "
+             "noise SDs, the worst first, then every BTS curve (the surrogate has no disc "
+             "displacement). Error: RMS over the specimens of each one's error, the "
              "RMS of its two parts: the peak's residual and the RMS residual of its pre-peak "
              "curve points (displacement at the measured forces), each divided by the data's "
              "noise.\n\n"
@@ -139,7 +140,7 @@ namespace diagnose
         for (std::size_t i = 0; i < d.simulations.size(); ++i)
         {
           const Simulation &m = d.simulations[i];
-          r << "| s" << i + 1 << "_* | " << m.name << " | " << m.test << " | " << fmt(m.diameter_mm, 4) << " x "
+          r << "| " << simulation_stem(i) << "_* | " << m.name << " | " << m.test << " | " << fmt(m.diameter_mm, 4) << " x "
             << fmt(m.length_mm, 4) << " | " << fmt(m.confining_MPa, 4) << " | "
             << fmt(1e3 * m.particle_spacing, 3) << " | " << fmt(m.measured_peak_MPa, 4) << " | "
             << fmt(m.baseline.peak_MPa, 4) << " | " << fmt(m.extended.peak_MPa, 4) << " | "
@@ -211,7 +212,7 @@ namespace diagnose
     for (std::size_t i = 0; i < d.simulations.size(); ++i)
     {
       const Simulation &m = d.simulations[i];
-      const std::string stem = "simulations/s" + std::to_string(i + 1);
+      const std::string stem = "simulations/" + simulation_stem(i);
       Json o = {{"specimen", m.name},
                 {"test", m.test},
                 {"group", m.group},
@@ -253,7 +254,7 @@ namespace diagnose
     for (std::size_t i = 0; i < d.simulations.size(); ++i)
     {
       const Simulation &m = d.simulations[i];
-      const std::string stem = "s" + std::to_string(i + 1);
+      const std::string stem = simulation_stem(i);
       write(out / "simulations" / (stem + "_baseline.prm"), m.baseline.case_text);
       write(out / "simulations" / (stem + "_extended.prm"), m.extended.case_text);
       const auto rows = [&](const char *source, const std::vector<double> &x,

@@ -3,7 +3,6 @@
 // against the measured ones (see diagnose_model.h, simulate()).
 #include "diagnose_model.h"
 
-#include <coupling/errors.h>
 #include <coupling/run_case.h>
 #include <coupling/run_output.h>
 
@@ -118,10 +117,8 @@ namespace diagnose
     {
       SimulatedRun out;
       coupling::CaseParameters c;
-      options.read_case(overrides_of(t, r, dx), c, out.case_text);
-      c.name               = "diagnose";
-      c.output.progress    = false;
-      c.output.n_snapshots = 0;
+      options.read_case(overrides_of(t, r, dx), c, out.case_text); // Output/Snapshots=0 among them
+      c.output.progress = false;
       Recorder rec;
       const coupling::Summary s = coupling::run_case(c, rec);
       out.peak_MPa              = s.peak_stress / 1e6;
@@ -271,7 +268,7 @@ namespace diagnose
     {
       const Simulation &m = out.simulations[i];
       if (m.extended.error > 1.05 * m.baseline.error + 0.5)
-        worse += (worse.empty() ? "" : ", ") + ("s" + std::to_string(i + 1)) + " (" + m.name + ", " +
+        worse += (worse.empty() ? "" : ", ") + simulation_stem(i) + " (" + m.name + ", " +
                  m.test + ": error " + num(m.baseline.error) + " -> " + num(m.extended.error) + ")";
     }
     if (!worse.empty())

@@ -188,7 +188,7 @@ TEST(Calibrate, BrazilianStatePutsTheDiscCentreOnTheEnvelope)
 TEST(Calibrate, HoekBrownEnvelopeRecoversAKnownEnvelope)
 {
   // strengths drawn from a known generalised Hoek-Brown envelope with a cut-off below its disc
-  // strength: the fit returns it (the search's tolerances: 1e-10 in log m_b and in a; 1e-6
+  // strength: the fit returns it (the search's tolerances: 1e-12 in log m_b, 1e-10 in a; 1e-6
   // leaves room for the flat misfit near its minimum)
   diagnose::HoekBrownStrength truth;
   truth.sigma_ci = 200, truth.m_b = 12, truth.a = 0.7;

@@ -83,7 +83,8 @@ namespace diagnose
   {
     double bic_threshold = 10; ///< Delta BIC an effect must earn ("very strong", Kass-Raftery)
     /// > 0: run the coupled simulator on held-out specimens at this particle spacing [m] (a
-    /// cylinder wider than 20 spacings is run at diameter / 20), baseline and extended case
+    /// cylinder wider than 20 spacings is run at diameter / 20, and a specimen whose smallest
+    /// dimension is under 10 spacings at a tenth of it), baseline and extended case
     double coupled_spacing = 0;
     int max_simulations    = 6;  ///< specimens the coupled simulator runs, at most
     CaseReader read_case;        ///< needed when coupled_spacing > 0
@@ -123,13 +124,21 @@ namespace diagnose
     std::map<std::string, double> coupled; ///< coupled-simulator errors, when run
   };
 
+  /// The name of the i-th (from 0) simulated specimen's files and rows: s1, s2, ...
+  inline std::string simulation_stem(const std::size_t i)
+  {
+    return "s" + std::to_string(i + 1);
+  }
+
   /// One coupled run of a simulated specimen: its case file and what it gave.
   struct SimulatedRun
   {
     std::string case_text;                     ///< the complete case file it ran
     std::vector<double> displacement_mm, force_kN; ///< its curve (deviatoric force; BTS: the load)
     double peak_MPa = 0; ///< sigma1 at the peak (BTS: 2P / (pi D t)) [MPa]
-    double error    = 0; ///< RMS of (simulated - measured) / noise over the specimen's data [-]
+    /// the specimen's error: RMS of its two parts, (peak - measured) / noise and the RMS over its
+    /// curve points of (displacement - measured) / noise [-]
+    double error = 0;
     double curve_rms_mm = 0; ///< RMS displacement error on the pre-peak curve points [mm]
     std::string stop_reason;
   };
