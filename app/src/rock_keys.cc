@@ -152,6 +152,14 @@ namespace app::keys
     });
     s.add<int>("Scatter seed", c.scatter_seed, "seed of the strength scatter: the same seed, the same rock",
                [](int v) { return v >= 0; }, "must be >= 0");
+    s.add<double>("Scatter length", c.scatter_length,
+                  "[m] correlation length of the strength scatter: the edge of the cubic cells (fixed in space) whose particles share one strength factor, so that a finer SPH/Particle spacing resolves the same rock; 0 = one factor per particle (the rock then changes with the spacing)",
+                  [](double v) { return v >= 0 && v < 10; }, "must be in [0, 10) m (0 = one factor per particle)");
+    s.check("Scatter length", [&c]() {
+      return c.scatter_length == 0 || c.strength_scatter > 0
+               ? ""
+               : "is used with Rock/Strength scatter > 0 only; leave it at 0";
+    });
     // crack closure (toe) elasticity, sph/crack_closure.h: the law `cosim diagnose` fits
     s.add<double>("Closure modulus ratio", m.closure_modulus_ratio,
                   "crack closure: Young's modulus at zero compressive stress E0 / E [-]; 1 = no crack closure (linear elastic)",

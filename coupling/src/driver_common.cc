@@ -449,8 +449,10 @@ namespace coupling
       // the hash cell of each particle's draw: a lattice's cell (one particle each); body-fitted
       // rings put particles anywhere, at least 0.85 dx apart, so cells of dx / 4 (diagonal
       // 0.43 dx) hold one particle each and every particle draws its own strength
-      // (a flattened disc's rows are closer than dx: its cells too)
-      const double cell = p.particle_arrangement == sph::ParticleArrangement::lattice && p.flat_angle == 0 ?
+      // (a flattened disc's rows are closer than dx: its cells too). With Rock/Scatter length
+      // the cells are the heterogeneity's, fixed in space: every particle in one shares its factor
+      const double cell = rock.scatter_length > 0 ? rock.scatter_length
+                          : p.particle_arrangement == sph::ParticleArrangement::lattice && p.flat_angle == 0 ?
                             p.sph.spacing :
                             0.25 * p.sph.spacing;
       body->set_strength_factors(sph::weibull_strength_factors<3>(

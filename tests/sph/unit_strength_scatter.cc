@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -60,6 +61,33 @@ TEST(SphStrengthScatter, AParticlesFactorDependsOnItsCellAndTheSeedOnly)
   EXPECT_EQ(same, 0u) << "another seed is another rock";
   // the eight cells around the origin are distinct (floor, not truncation towards 0)
   EXPECT_NE(b[0], b[1]);
+}
+
+TEST(SphStrengthScatter, CellsOfAScatterLengthGiveTheSameRockAtEverySpacing)
+{
+  // Rock/Scatter length: cells of 4 mm fixed in space; a 2 mm and a 1 mm lattice of the same
+  // cube must draw the same factor wherever their particles share a cell
+  const double cell   = 4e-3;
+  const auto coarse   = cube_lattice(8, 2e-3), fine = cube_lattice(16, 1e-3);
+  const auto f_coarse = weibull_strength_factors<3>(coarse, cell, 10.0, 3);
+  const auto f_fine   = weibull_strength_factors<3>(fine, cell, 10.0, 3);
+  const auto key      = [cell](const Vector<3> &x) {
+    return std::array<long, 3>{std::lround(std::floor(x[0] / cell)), std::lround(std::floor(x[1] / cell)),
+                               std::lround(std::floor(x[2] / cell))};
+  };
+  std::size_t compared = 0, distinct = 0;
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    for (std::size_t j = 0; j < coarse.size(); ++j)
+      if (key(fine[i]) == key(coarse[j]))
+      {
+        EXPECT_EQ(f_fine[i], f_coarse[j]) << "particle " << i << " of the fine lattice";
+        ++compared;
+      }
+  for (std::size_t j = 1; j < coarse.size(); ++j)
+    distinct += f_coarse[j] != f_coarse[0];
+  EXPECT_EQ(compared, fine.size() * 8) << "each fine particle shares its cell with 8 coarse ones";
+  // 2 x 2 x 2 coarse particles per cell, 64 cells: the field is not one value
+  EXPECT_GT(distinct, coarse.size() / 2);
 }
 
 TEST(SphStrengthScatter, BadModulusOrSpacingIsRefused)

@@ -28,6 +28,10 @@ namespace coupling
     double bts = 0.0;           ///< [Pa] the group's Brazilian tensile strength (reporting, CSM)
     double strength_scatter = 0.0; ///< [-] Weibull modulus of per-particle strength; 0 = homogeneous
     int scatter_seed = 1;          ///< seed of the strength scatter (same seed, same rock)
+    /// [m] edge of the cubic cells that share one strength factor (the heterogeneity's
+    /// correlation length, fixed in space so that refining the spacing resolves the same rock);
+    /// 0 = one factor per particle
+    double scatter_length = 0.0;
     /// Rate-dependent strength (sph/rate_strength.h): strength gain per decade of the nominal
     /// strain rate [-]; 0 = rate independent
     double rate_sensitivity = 0.0;
