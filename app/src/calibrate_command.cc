@@ -1,6 +1,7 @@
 // `cosim calibrate`: Mohr-Coulomb c, phi from UCS and BTS (diagnose/calibrate.h), for one pair of
 // strengths or for every group of a data folder.
 #include <app/calibrate_command.h>
+#include "calibrate_simulate.h"
 #include <app/cli.h>
 #include <diagnose/text_input.h>
 #include <app/paths.h>
@@ -21,6 +22,7 @@ namespace app
   std::string calibrate_help()
   {
     return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian | --envelope] [--data DIR] [--csv]\n"
+           "       cosim calibrate --simulate UCS_CASE [--set S/K=V] [--seeds N] [--ucs MPa] [--tolerance PCT] [--check BTS_CASE]\n"
            "\n"
            "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
            "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
@@ -46,6 +48,15 @@ namespace app
            "triaxial strengths a = 0.5 and m_b puts the disc centre's state at failure on it. It\n"
            "prints the fit and its misses.\n"
            "\n"
+           "With --simulate CASE (a UCS case file, Rock/Model = mohr-coulomb or mohr-coulomb-cutoff)\n"
+           "it calibrates through the coupled simulator instead: it scales the case's cohesion and\n"
+           "tension cut-off by one factor until the simulated UCS, the mean over --seeds rocks\n"
+           "(Rock/Scatter seed, seed + 1, ...) of a scattered strength, is the group's Table 3 UCS\n"
+           "(or --ucs) within --tolerance, and prints the --set lines that run the calibrated rock.\n"
+           "A heterogeneous rock (Rock/Strength scatter > 0) fails below its particles' mean\n"
+           "strength, so Eqs. 14-15 do not hold for it; this calibration does, at the case's spacing.\n"
+           "--check BTS_CASE runs a BTS case with the same overrides and the calibrated strength.\n"
+           "\n"
            "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
            "and BTS) next to the calibrated values stored there (Table 4).\n"
            "\n"
@@ -57,6 +68,9 @@ namespace app
            "  --brazilian    calibrate to the disc centre's stress state (see above)\n"
            "  --envelope     the Hoek-Brown envelope with cut-off through all strengths (see above)\n"
            "  --csv          print comma-separated values instead of an aligned table\n"
+           "  --simulate CASE  calibrate through the simulator on this UCS case (see above), with\n"
+           "                 --set \"S/K=V\" (repeatable), --seeds N (default 3), --ucs MPa,\n"
+           "                 --tolerance PCT (default 0.5), --check BTS_CASE\n"
            "\n"
            "Exit status: 0 done, 2 bad input.\n";
   }
@@ -112,6 +126,8 @@ namespace app
 
   int calibrate_main(const std::vector<std::string> &args)
   {
+    if (is_simulated_calibration(args))
+      return calibrate_simulate_main(args);
     std::string group, data = data_directory().string();
     double ucs = 0, bts = 0;
     bool has_ucs = false, has_bts = false, csv = false, brazilian = false, envelope = false;

@@ -14,6 +14,7 @@ bts=cases/bts/bts.prm
 ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm
 quick=(--set "Output/Snapshots=2")
+het=(--set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" --set "Rock/Softening law=fracture energy")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 
 study() { # NAME CASE ARGS...
@@ -84,6 +85,19 @@ run() {
     envelope-bts-softening) study envelope-bts-softening $bts --set "Rock/Model=hoek-brown" \
                     --set "Rock/Strength parameters=envelope" --set "Rock/Group=M10" \
                     --key "Rock/Softening strain" --values 0.0002,0.0005,0.002 ;;
+    # heterogeneous rock (cases/studies/README.md): Weibull scatter m = 10 on 5 mm cells fixed in
+    # space, crack-band softening; its convergence in spacing, then end friction and slenderness
+    heterogeneous-ucs-spacing) study heterogeneous-ucs-spacing $ucs "${het[@]}" \
+                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-ucs-platens) study heterogeneous-ucs-platens $ucs "${het[@]}" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" \
+                    --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-ucs-bonded) study heterogeneous-ucs-bonded $ucs "${het[@]}" --set "Platens/Bonded=true" \
+                    --vary "Test/Length=0.05,0.1,0.125" --vary "Rock/Scatter seed=1,2,3" ;;
+    # the same rock with the strain softening law: the heterogeneous specimen does not converge
+    heterogeneous-ucs-strain-softening) study heterogeneous-ucs-strain-softening $ucs \
+                    --set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" \
+                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
@@ -91,7 +105,9 @@ run() {
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
-     basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening)
+     basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
+     heterogeneous-ucs-spacing heterogeneous-ucs-platens heterogeneous-ucs-bonded
+     heterogeneous-ucs-strain-softening)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done

@@ -173,6 +173,21 @@ TEST(BadInput, EnvelopeNeedsHoekBrownAndFitsItsOwnMi)
   expect_bad_input(box, {"calibrate", "--envelope", "--ucs", "40", "--bts", "10"}, {"UCS > 4 BTS"});
 }
 
+TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
+{
+  Sandbox box;
+  const std::string bts_case = source("cases/bts/bts.prm");
+  expect_bad_input(box, {"calibrate", "--simulate", bts_case}, {"Test/Type = BTS", "runs a UCS case"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=elastic"},
+                   {"mohr-coulomb or mohr-coulomb-cutoff"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--seeds", "0"}, {"--seeds", "[1, 100]"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--check", ucs_case}, {"--check runs a BTS case"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--sets", "x"}, {"unknown option '--sets'", "--set"});
+  expect_bad_input(box, {"calibrate", "--simulate", (box.dir() / "missing.prm").string()}, {"missing.prm"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Scatter length=0.005"},
+                   {"Rock/Scatter length", "Rock/Strength scatter > 0"});
+}
+
 TEST(BadInput, ConfiningPressureOnUcs)
 {
   Sandbox box;
@@ -388,6 +403,25 @@ TEST(Calibrate, CommandPrintsTable4)
   // M8: Table 3 UCS 255.90, BTS 12.99 -> Table 4 c 28.83, phi 64.61, twice (computed and stored)
   EXPECT_NE(r.out.find("M8,255.90,12.99,28.83,64.61,28.83,64.61"), std::string::npos) << r.out;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 11);
+}
+
+// Calibration through the simulator on a homogeneous Mohr-Coulomb cylinder, whose coupled peak is
+// the closed form 2 c cos(phi) / (1 - sin(phi)) (within 0.3 % at 5 mm): asked for 250 MPa, the
+// scale on c must be 250 / 282.18 (Table 4's c gives Table 3's 282.18 MPa in closed form).
+TEST(Calibrate, SimulatedCalibrationOfAHomogeneousRockIsTheClosedFormScale)
+{
+  Sandbox box;
+  const Result r = run_cosim(box, {"calibrate", "--simulate", ucs_case, "--ucs", "250", "--csv", "--set",
+                                   "SPH/Particle spacing=0.005", "--set", "Loading/End strain=0.006"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto at = r.out.find("strength scale ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double scale = std::stod(r.out.substr(at + 15));
+  // 0.5 %: the calibration's own tolerance (0.5 %) on top of the coupled peak's +0.23 % at 5 mm
+  EXPECT_NEAR(scale / (250.0 / 282.18), 1.0, 0.008) << r.out;
+  EXPECT_NE(r.out.find("Rock/Cohesion="), std::string::npos) << r.out;
+  // one run per iteration: a homogeneous rock has no seeds to average
+  EXPECT_NE(r.out.find("standard error over 1 rock "), std::string::npos) << r.out;
 }
 
 // The output files of a real run: the default UCS case end to end (coarse spacing to stay quick).
