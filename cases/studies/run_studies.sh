@@ -94,6 +94,8 @@ run() {
                     --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-ucs-bonded) study heterogeneous-ucs-bonded $ucs "${het[@]}" --set "Platens/Bonded=true" \
                     --vary "Test/Length=0.05,0.1,0.125" --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-bts-spacing) study heterogeneous-bts-spacing $bts "${het[@]}" \
+                    --vary "SPH/Particle spacing=0.0025,0.00125,0.001" --vary "Rock/Scatter seed=1,2,3" ;;
     # the same rock with the strain softening law: the heterogeneous specimen does not converge
     heterogeneous-ucs-strain-softening) study heterogeneous-ucs-strain-softening $ucs \
                     --set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" \
@@ -107,7 +109,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-platens heterogeneous-ucs-bonded
-     heterogeneous-ucs-strain-softening)
+     heterogeneous-ucs-strain-softening heterogeneous-bts-spacing)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
