@@ -11,8 +11,11 @@
 #include <coupling/run_case.h>
 #include <diagnose/text_input.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <stdexcept>
 #include <vector>
 
 namespace app
@@ -155,11 +158,13 @@ namespace app
     if (!(target > 0))
       throw InputError("cosim calibrate --simulate: the case's group has no UCS; give --ucs MPa");
 
-    // the peak is nearly proportional to the strengths (the elastic part scales with them, the
-    // softening strain does not): a fixed-point step k <- k target / peak converges in a few
+    // the peak grows with the strengths, less than in proportion when a heterogeneous rock's
+    // fracture energy (fixed) makes the stronger rock more brittle: the first step takes it as
+    // proportional (k <- k target / peak), the later ones a secant in log k, log peak through the
+    // last two (slope kept within [0.2, 2])
     std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", "cohesion_MPa",
                 "mean_UCS_MPa", "peaks_MPa");
-    double k = 1;
+    double k = 1, previous_k = 0, previous_mean = 0;
     Sample s;
     bool converged = false;
     for (int iteration = 0; iteration < 8; ++iteration)
@@ -180,7 +185,12 @@ namespace app
         converged = true;
         break;
       }
-      k *= target / s.mean;
+      double slope = 1; // d log(peak) / d log(k)
+      if (previous_k > 0)
+        slope = std::clamp(std::log(s.mean / previous_mean) / std::log(k / previous_k), 0.2, 2.0);
+      previous_k    = k;
+      previous_mean = s.mean;
+      k *= std::pow(target / s.mean, 1 / slope);
     }
     const CaseParameters calibrated = scaled(base, k);
     std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%), standard error over %zu rock%s %.2f MPa\n",
