@@ -96,6 +96,13 @@ run() {
                     --vary "Test/Length=0.05,0.1,0.125" --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-bts-spacing) study heterogeneous-bts-spacing $bts "${het[@]}" \
                     --vary "SPH/Particle spacing=0.0025,0.00125,0.001" --vary "Rock/Scatter seed=1,2,3" ;;
+    # the disc of the rock calibrated by cosim calibrate --simulate (c = 61.9 MPa at 2.5 mm)
+    # against a tension cut-off and against the fracture energy
+    heterogeneous-bts-cutoff) study heterogeneous-bts-cutoff $bts "${het[@]}" --set "Rock/Cohesion=61.9e6" \
+                    --set "Rock/Model=mohr-coulomb-cutoff" --key "Rock/Tensile strength" --values 8e6,12e6,16e6,20e6 ;;
+    heterogeneous-bts-fracture-energy) study heterogeneous-bts-fracture-energy $bts "${het[@]}" \
+                    --set "Rock/Cohesion=61.9e6" --set "Rock/Model=mohr-coulomb-cutoff" \
+                    --set "Rock/Tensile strength=10e6" --key "Rock/Fracture energy" --values 3,10,30,100 ;;
     # the same rock with the strain softening law: the heterogeneous specimen does not converge
     heterogeneous-ucs-strain-softening) study heterogeneous-ucs-strain-softening $ucs \
                     --set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" \
@@ -109,7 +116,8 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-platens heterogeneous-ucs-bonded
-     heterogeneous-ucs-strain-softening heterogeneous-bts-spacing)
+     heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
+     heterogeneous-bts-fracture-energy)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
