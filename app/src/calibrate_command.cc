@@ -22,7 +22,8 @@ namespace app
   std::string calibrate_help()
   {
     return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian | --envelope] [--data DIR] [--csv]\n"
-           "       cosim calibrate --simulate UCS_CASE [--set S/K=V] [--seeds N] [--ucs MPa] [--tolerance PCT] [--check BTS_CASE]\n"
+           "       cosim calibrate --simulate UCS_CASE [--set S/K=V] [--seeds N] [--ucs MPa] [--tolerance PCT]\n"
+           "                       [--check BTS_CASE | --with-bts BTS_CASE [--bts MPa]]\n"
            "\n"
            "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
            "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
@@ -56,6 +57,10 @@ namespace app
            "A heterogeneous rock (Rock/Strength scatter > 0) fails below its particles' mean\n"
            "strength, so Eqs. 14-15 do not hold for it; this calibration does, at the case's spacing.\n"
            "--check BTS_CASE runs a BTS case with the same overrides and the calibrated strength.\n"
+           "--with-bts BTS_CASE (Rock/Softening law = fracture energy) fits c and Rock/Fracture\n"
+           "energy G_I together so that the mean simulated UCS and BTS are both the measured ones\n"
+           "(the group's Table 3, or --ucs and --bts), by Broyden's method on their logarithms: a\n"
+           "heterogeneous disc's strength is set by G_I more than by any strength.\n"
            "\n"
            "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
            "and BTS) next to the calibrated values stored there (Table 4).\n"
@@ -70,7 +75,8 @@ namespace app
            "  --csv          print comma-separated values instead of an aligned table\n"
            "  --simulate CASE  calibrate through the simulator on this UCS case (see above), with\n"
            "                 --set \"S/K=V\" (repeatable), --seeds N (default 3), --ucs MPa,\n"
-           "                 --tolerance PCT (default 0.5), --check BTS_CASE\n"
+           "                 --tolerance PCT (default 0.5), --check BTS_CASE, --with-bts BTS_CASE,\n"
+           "                 --bts MPa\n"
            "\n"
            "Exit status: 0 done, 2 bad input.\n";
   }

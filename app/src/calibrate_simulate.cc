@@ -4,12 +4,14 @@
 // yield first and a band runs through them), so the closed-form calibration of Eqs. 14-15 does not
 // hold for it; this one does, for the model as the simulator runs it.
 #include "calibrate_simulate.h"
+#include <app/joint_solver.h>
 
 #include <app/case_file.h>
 #include <app/cli.h>
 #include <coupling/errors.h>
 #include <coupling/run_case.h>
 #include <diagnose/text_input.h>
+#include <sph/rock_models.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,10 +29,11 @@ namespace app
   {
     struct Options
     {
-      std::string case_file, check_file;
+      std::string case_file, check_file, bts_file; ///< bts_file: --with-bts
       std::vector<std::string> overrides;
       int seeds = 3;
       double target = 0;     ///< [Pa]; 0 = the group's Table 3 UCS
+      double bts_target = 0; ///< [Pa]; 0 = the group's Table 3 BTS (--with-bts)
       double tolerance = 0.005; ///< relative miss of the mean peak at which the iteration stops
       bool csv = false;
     };
@@ -91,6 +94,14 @@ namespace app
           o.case_file = cursor.value(a);
         else if (a == "--check")
           o.check_file = cursor.value(a);
+        else if (a == "--with-bts")
+          o.bts_file = cursor.value(a);
+        else if (a == "--bts")
+        {
+          o.bts_target = cursor.number(a) * 1e6;
+          if (!(o.bts_target > 0))
+            throw InputError("cosim calibrate: --bts must be > 0 MPa");
+        }
         else if (a == "--set")
           o.overrides.push_back(cursor.value(a));
         else if (a == "--seeds")
@@ -116,8 +127,9 @@ namespace app
           o.csv = true;
         else
           throw InputError("cosim calibrate --simulate: unknown option '" + diagnose::clip(a) + "'" +
-                           did_you_mean(a, {"--simulate", "--check", "--set", "--seeds", "--ucs", "--tolerance", "--csv"}) +
-                           "; accepted: --check, --set, --seeds, --ucs, --tolerance, --csv");
+                           did_you_mean(a, {"--simulate", "--check", "--with-bts", "--bts", "--set", "--seeds", "--ucs",
+                                            "--tolerance", "--csv"}) +
+                           "; accepted: --check, --with-bts, --bts, --set, --seeds, --ucs, --tolerance, --csv");
       }
       return o;
     }
@@ -128,12 +140,117 @@ namespace app
       CaseParameters p = read_case_file(file, overrides).parameters;
       if (p.test != test)
         throw InputError("cosim calibrate --simulate: " + file + ": Test/Type = " + p.test + "; " +
-                         (test == "UCS" ? "the calibration runs a UCS case" : "--check runs a BTS case"));
+                         (test == "UCS" ? "the calibration runs a UCS case" : "--check and --with-bts run a BTS case"));
       if (p.rock.model != sph::RockModel::mohr_coulomb && p.rock.model != sph::RockModel::mohr_coulomb_cutoff)
         throw InputError("cosim calibrate --simulate: " + file +
                          ": calibrates the cohesion (and tension cut-off) of Rock/Model = mohr-coulomb or "
                          "mohr-coulomb-cutoff");
       return p;
+    }
+
+    /// The rock keys that the UCS and the BTS case of a joint calibration must share.
+    void require_same_rock(const CaseParameters &u, const CaseParameters &b, const std::string &bts_file)
+    {
+      const sph::MaterialParameters &x = u.rock, &y = b.rock;
+      const coupling::RockCase &cx = u.rock_case, &cy = b.rock_case;
+      const char *differs = x.model != y.model                         ? "Rock/Model"
+                            : x.cohesion != y.cohesion                 ? "Rock/Cohesion"
+                            : x.friction_angle != y.friction_angle     ? "Rock/Friction angle"
+                            : x.tensile_strength != y.tensile_strength ? "Rock/Tensile strength"
+                            : x.youngs_modulus != y.youngs_modulus     ? "Rock/Youngs modulus"
+                            : x.softening_law != y.softening_law       ? "Rock/Softening law"
+                            : x.fracture_energy != y.fracture_energy   ? "Rock/Fracture energy"
+                            : cx.strength_scatter != cy.strength_scatter ? "Rock/Strength scatter"
+                            : cx.scatter_length != cy.scatter_length   ? "Rock/Scatter length"
+                            : cx.scatter_seed != cy.scatter_seed       ? "Rock/Scatter seed"
+                                                                       : nullptr;
+      if (differs)
+        throw InputError("cosim calibrate --with-bts: " + bts_file + ": " + differs +
+                         " differs from the UCS case's: the two cases must describe one rock (set it in both, or by --set)");
+    }
+
+    /// A fracture energy the crack band cannot dissipate (the reader refuses it) stops the fit.
+    void require_crack_band(const CaseParameters &p)
+    {
+      const double band = sph::rock::crack_band_width(p.sph.spacing, p.sph.cslh);
+      const double h_max = sph::rock::max_crack_band_width(p.rock);
+      if (!(band < h_max))
+        throw std::runtime_error("cosim calibrate --with-bts: the fit reached Rock/Fracture energy = " +
+                                 std::to_string(p.rock.fracture_energy) + " J/m^2, whose tensile softening snaps back at SPH/Particle spacing = " +
+                                 std::to_string(p.sph.spacing) + " m (crack band " + std::to_string(band) +
+                                 " m, limit " + std::to_string(h_max) + " m): calibrate at a finer spacing");
+    }
+
+    std::string joined(const std::vector<double> &values, const bool csv)
+    {
+      std::string out;
+      for (const double v : values)
+      {
+        char b[32];
+        std::snprintf(b, sizeof b, "%s%.2f", out.empty() ? "" : (csv ? ";" : " "), v * 1e-6);
+        out += b;
+      }
+      return out;
+    }
+
+    /// --with-bts: c (with the cut-off) and G_I together, so that the mean simulated UCS and BTS
+    /// are the measured ones: Broyden's method on the logarithms (joint_solver.h).
+    int joint_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
+                          const double ucs_target)
+    {
+      if (ucs_case.rock.softening_law != sph::SofteningLaw::fracture_energy)
+        throw InputError("cosim calibrate --with-bts: fits Rock/Fracture energy with c; set Rock/Softening law = fracture energy");
+      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
+      if (!(bts_target > 0))
+        throw InputError("cosim calibrate --with-bts: the case's group has no BTS; give --bts MPa");
+      const double G0 = ucs_case.rock.fracture_energy;
+      const auto at   = [G0](const CaseParameters &p, const Vector2 &x) {
+        CaseParameters q       = scaled(p, std::exp(x[0]));
+        q.rock.fracture_energy = G0 * std::exp(x[1]);
+        return q;
+      };
+      std::printf(o.csv ? "%s,%s,%s,%s,%s,%s,%s,%s\n" : "%-5s %9s %12s %10s %12s %12s  %s | %s\n", "run", "scale",
+                  "cohesion_MPa", "G_I_J_m2", "mean_UCS_MPa", "mean_BTS_MPa", "UCS_peaks_MPa", "BTS_peaks_MPa");
+      Sample u, b;
+      int evaluation = 0;
+      const auto residual = [&](const Vector2 &x) -> Vector2 {
+        const CaseParameters pu = at(ucs_case, x), pb = at(bts_case, x);
+        require_crack_band(pu);
+        require_crack_band(pb);
+        char what[96];
+        std::snprintf(what, sizeof what, "scale %.4f, G_I %.1f J/m^2", std::exp(x[0]), pu.rock.fracture_energy);
+        u = sample(pu, o.seeds, std::string("UCS at ") + what);
+        b = sample(pb, o.seeds, std::string("BTS at ") + what);
+        std::printf(o.csv ? "%d,%.6f,%.4f,%.3f,%.3f,%.4f,%s,%s\n" : "%-5d %9.6f %12.4f %10.3f %12.3f %12.4f  %s | %s\n",
+                    evaluation++, std::exp(x[0]), pu.rock.cohesion * 1e-6, pu.rock.fracture_energy, u.mean * 1e-6,
+                    b.mean * 1e-6, joined(u.peaks, o.csv).c_str(), joined(b.peaks, o.csv).c_str());
+        std::fflush(stdout);
+        return {std::log(u.mean / ucs_target), std::log(b.mean / bts_target)};
+      };
+      // the first guess of d log(peak) / d log(scale), d log(peak) / d log(G_I), measured on M1's
+      // heterogeneous rock at 2.5 mm: UCS 0.7, 0.1; BTS 0.8, 0.4 (heterogeneous-bts-fracture-energy);
+      // Broyden's updates correct it; a step changes c or G_I by at most a factor 2
+      const Matrix2 J0{{{0.7, 0.1}, {0.8, 0.4}}};
+      const JointSolution j = solve_broyden(residual, {0, 0}, J0, std::log1p(o.tolerance), 12, std::log(2.0));
+      const CaseParameters c = at(ucs_case, j.x);
+      std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%, standard error %.2f); target BTS %.2f MPa: "
+                  "simulated %.2f MPa (%+.2f %%, standard error %.2f), over %zu rock%s\n",
+                  ucs_target * 1e-6, u.mean * 1e-6, 100 * (u.mean / ucs_target - 1), u.standard_error * 1e-6,
+                  bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), b.standard_error * 1e-6,
+                  u.peaks.size(), u.peaks.size() == 1 ? "" : "s");
+      std::printf("strength scale %.4f of the case's, fracture energy %.1f J/m^2; run with:\n  --set "
+                  "\"Rock/Cohesion=%.6g\" --set \"Rock/Fracture energy=%.6g\"",
+                  std::exp(j.x[0]), c.rock.fracture_energy, c.rock.cohesion, c.rock.fracture_energy);
+      if (c.rock.tensile_strength > 0)
+        std::printf(" --set \"Rock/Tensile strength=%.6g\"", c.rock.tensile_strength);
+      std::printf("\n");
+      if (!j.converged)
+      {
+        std::fprintf(stderr, "cosim calibrate --with-bts: not converged to %.2f %% in %d evaluations\n",
+                     100 * o.tolerance, j.evaluations);
+        return 1;
+      }
+      return 0;
     }
   } // namespace
 
@@ -157,6 +274,16 @@ namespace app
     const double target = o.target > 0 ? o.target : base.rock_case.ucs;
     if (!(target > 0))
       throw InputError("cosim calibrate --simulate: the case's group has no UCS; give --ucs MPa");
+    if (!o.bts_file.empty())
+    {
+      if (check)
+        throw InputError("cosim calibrate: --with-bts calibrates on the BTS case; --check is for the UCS-only calibration");
+      const CaseParameters disc = read_case(o.bts_file, o.overrides, "BTS");
+      require_same_rock(base, disc, o.bts_file);
+      return joint_calibration(o, base, disc, target);
+    }
+    if (o.bts_target > 0)
+      throw InputError("cosim calibrate: --bts is the target of --with-bts");
 
     // the peak grows with the strengths, less than in proportion when a heterogeneous rock's
     // fracture energy (fixed) makes the stronger rock more brittle: the first step takes it as

@@ -181,11 +181,26 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=elastic"},
                    {"mohr-coulomb or mohr-coulomb-cutoff"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--seeds", "0"}, {"--seeds", "[1, 100]"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--check", ucs_case}, {"--check runs a BTS case"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--check", ucs_case}, {"--check and --with-bts run a BTS case"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--sets", "x"}, {"unknown option '--sets'", "--set"});
   expect_bad_input(box, {"calibrate", "--simulate", (box.dir() / "missing.prm").string()}, {"missing.prm"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Scatter length=0.005"},
                    {"Rock/Scatter length", "Rock/Strength scatter > 0"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case},
+                   {"--with-bts", "Rock/Softening law = fracture energy"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--bts", "15"}, {"--bts is the target of --with-bts"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case, "--check", bts_case},
+                   {"--check is for the UCS-only calibration"});
+  // the two cases must be one rock: a BTS case of another group
+  const fs::path other = box.dir() / "other.prm";
+  {
+    std::ifstream in(bts_case);
+    std::ofstream out(other);
+    out << in.rdbuf() << "subsection Rock\n  set Group = M2\nend\n";
+  }
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", other.string(), "--set",
+                         "Rock/Softening law=fracture energy"},
+                   {"other.prm", "differs from the UCS case's", "one rock"});
 }
 
 TEST(BadInput, ConfiningPressureOnUcs)
