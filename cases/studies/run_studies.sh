@@ -89,6 +89,8 @@ run() {
     # space, crack-band softening; its convergence in spacing, then end friction and slenderness
     heterogeneous-ucs-spacing) study heterogeneous-ucs-spacing $ucs "${het[@]}" \
                     --vary "SPH/Particle spacing=0.005,0.0025,0.00125" --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-ucs-1mm) study heterogeneous-ucs-1mm $ucs "${het[@]}" --set "SPH/Particle spacing=0.001" \
+                    --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-ucs-platens) study heterogeneous-ucs-platens $ucs "${het[@]}" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" \
                     --vary "Rock/Scatter seed=1,2,3" ;;
@@ -115,7 +117,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
-     heterogeneous-ucs-spacing heterogeneous-ucs-platens heterogeneous-ucs-bonded
+     heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
      heterogeneous-bts-fracture-energy)
 for name in "${@:-${all[@]}}"; do
