@@ -620,6 +620,10 @@ namespace app
                                     keys::format(ucs * ucs * band / (2 * p.rock.youngs_modulus)) +
                                     " J/m^2 or a finer spacing avoids it");
       }
+      if (p.rock_case.scatter_length > 0 && p.rock_case.scatter_length < p.sph.spacing)
+        result.warnings.push_back("Rock/Scatter length = " + keys::format(p.rock_case.scatter_length) +
+                                  " m is below SPH/Particle spacing = " + keys::format(p.sph.spacing) +
+                                  " m: each particle takes the cell at its centre, and the rock is not resolved");
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       const double smallest = std::min(p.diameter, p.length);
       if (cutting)

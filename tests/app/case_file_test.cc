@@ -137,6 +137,19 @@ TEST(CaseFile, TssfacAboveOneIsAcceptedWithAWarning)
   EXPECT_NE(c.warnings[0].find("TSSFAC"), std::string::npos);
 }
 
+TEST(CaseFile, ScatterLengthIsKeptAndWarnedBelowTheSpacing)
+{
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"),
+                                     {"Rock/Strength scatter=10", "Rock/Scatter length=0.005"});
+  expect_close(c.parameters.rock_case.scatter_length, 0.005);
+  EXPECT_TRUE(c.warnings.empty());
+  // cells finer than the particles: each particle samples one, and says so
+  const auto d = app::read_case_file(source("cases/ucs/ucs.prm"),
+                                     {"Rock/Strength scatter=10", "Rock/Scatter length=0.001"});
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find("Rock/Scatter length"), std::string::npos) << d.warnings[0];
+}
+
 TEST(CaseFile, ErrorsAreInputErrors)
 {
   EXPECT_THROW(app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/FORM=2"}), coupling::InputError);
