@@ -169,16 +169,23 @@ namespace app
                          " differs from the UCS case's: the two cases must describe one rock (set it in both, or by --set)");
     }
 
-    /// A fracture energy the crack band cannot dissipate (the reader refuses it) stops the fit.
-    void require_crack_band(const CaseParameters &p)
+    constexpr double pi = 3.14159265358979323846;
+
+    /// The friction angle's coordinate of the joint fit: y = log tan(pi/4 + phi/2), the log of
+    /// sqrt(N) in Mohr-Coulomb's UCS = 2 c sqrt(N), uniaxial tension = 2 c / sqrt(N).
+    double friction_coordinate(const double phi) { return std::log(std::tan(pi / 4 + phi / 2)); }
+    double friction_angle_of(const double y) { return 2 * std::atan(std::exp(y)) - pi / 2; }
+
+    /// A friction angle below the dilation or residual friction angle (the reader refuses it)
+    /// stops the fit.
+    void require_friction_angle(const CaseParameters &p)
     {
-      const double band = sph::rock::crack_band_width(p.sph.spacing, p.sph.cslh);
-      const double h_max = sph::rock::max_crack_band_width(p.rock);
-      if (!(band < h_max))
-        throw std::runtime_error("cosim calibrate --with-bts: the fit reached Rock/Fracture energy = " +
-                                 std::to_string(p.rock.fracture_energy) + " J/m^2, whose tensile softening snaps back at SPH/Particle spacing = " +
-                                 std::to_string(p.sph.spacing) + " m (crack band " + std::to_string(band) +
-                                 " m, limit " + std::to_string(h_max) + " m): calibrate at a finer spacing");
+      const double phi = p.rock.friction_angle;
+      if (!(phi > 0 && phi < pi / 2) || p.rock.dilation_angle > phi ||
+          (p.rock.residual_friction_angle > 0 && p.rock.residual_friction_angle > phi))
+        throw std::runtime_error("cosim calibrate --with-bts: the fit reached a friction angle of " +
+                                 std::to_string(phi * 180 / pi) +
+                                 " degrees, outside (0, 90) or below Rock/Dilation angle or Rock/Residual friction angle");
     }
 
     std::string joined(const std::vector<double> &values, const bool csv)
@@ -193,55 +200,55 @@ namespace app
       return out;
     }
 
-    /// --with-bts: c (with the cut-off) and G_I together, so that the mean simulated UCS and BTS
-    /// are the measured ones: Broyden's method on the logarithms (joint_solver.h).
+    /// --with-bts: c (with the cut-off) and phi together, the two unknowns of Eqs. 14-15, so that
+    /// the mean simulated UCS and BTS are the measured ones: Broyden's method on the logarithms
+    /// (joint_solver.h).
     int joint_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
                           const double ucs_target)
     {
-      if (ucs_case.rock.softening_law != sph::SofteningLaw::fracture_energy)
-        throw InputError("cosim calibrate --with-bts: fits Rock/Fracture energy with c; set Rock/Softening law = fracture energy");
       const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
       if (!(bts_target > 0))
         throw InputError("cosim calibrate --with-bts: the case's group has no BTS; give --bts MPa");
-      const double G0 = ucs_case.rock.fracture_energy;
-      const auto at   = [G0](const CaseParameters &p, const Vector2 &x) {
-        CaseParameters q       = scaled(p, std::exp(x[0]));
-        q.rock.fracture_energy = G0 * std::exp(x[1]);
+      const double y0 = friction_coordinate(ucs_case.rock.friction_angle);
+      const auto at   = [y0](const CaseParameters &p, const Vector2 &x) {
+        CaseParameters q      = scaled(p, std::exp(x[0]));
+        q.rock.friction_angle = friction_angle_of(y0 + x[1]);
         return q;
       };
-      std::printf(o.csv ? "%s,%s,%s,%s,%s,%s,%s,%s\n" : "%-5s %9s %12s %10s %12s %12s  %s | %s\n", "run", "scale",
-                  "cohesion_MPa", "G_I_J_m2", "mean_UCS_MPa", "mean_BTS_MPa", "UCS_peaks_MPa", "BTS_peaks_MPa");
+      std::printf(o.csv ? "%s,%s,%s,%s,%s,%s,%s,%s\n" : "%-5s %9s %12s %9s %12s %12s  %s | %s\n", "run", "scale",
+                  "cohesion_MPa", "phi_deg", "mean_UCS_MPa", "mean_BTS_MPa", "UCS_peaks_MPa", "BTS_peaks_MPa");
       Sample u, b;
       int evaluation = 0;
       const auto residual = [&](const Vector2 &x) -> Vector2 {
         const CaseParameters pu = at(ucs_case, x), pb = at(bts_case, x);
-        require_crack_band(pu);
-        require_crack_band(pb);
+        require_friction_angle(pu);
+        const double phi = pu.rock.friction_angle * 180 / pi;
         char what[96];
-        std::snprintf(what, sizeof what, "scale %.4f, G_I %.1f J/m^2", std::exp(x[0]), pu.rock.fracture_energy);
+        std::snprintf(what, sizeof what, "c %.3f MPa, phi %.3f deg", pu.rock.cohesion * 1e-6, phi);
         u = sample(pu, o.seeds, std::string("UCS at ") + what);
         b = sample(pb, o.seeds, std::string("BTS at ") + what);
-        std::printf(o.csv ? "%d,%.6f,%.4f,%.3f,%.3f,%.4f,%s,%s\n" : "%-5d %9.6f %12.4f %10.3f %12.3f %12.4f  %s | %s\n",
-                    evaluation++, std::exp(x[0]), pu.rock.cohesion * 1e-6, pu.rock.fracture_energy, u.mean * 1e-6,
-                    b.mean * 1e-6, joined(u.peaks, o.csv).c_str(), joined(b.peaks, o.csv).c_str());
+        std::printf(o.csv ? "%d,%.6f,%.4f,%.4f,%.3f,%.4f,%s,%s\n" : "%-5d %9.6f %12.4f %9.4f %12.3f %12.4f  %s | %s\n",
+                    evaluation++, std::exp(x[0]), pu.rock.cohesion * 1e-6, phi, u.mean * 1e-6, b.mean * 1e-6,
+                    joined(u.peaks, o.csv).c_str(), joined(b.peaks, o.csv).c_str());
         std::fflush(stdout);
         return {std::log(u.mean / ucs_target), std::log(b.mean / bts_target)};
       };
-      // the first guess of d log(peak) / d log(scale), d log(peak) / d log(G_I), measured on M1's
-      // heterogeneous rock at 2.5 mm: UCS 0.8, 0.1; BTS 1.1, 0.4 (G_I: heterogeneous-bts-fracture-
-      // energy; scale: c x 2 with G_I / 2 moved UCS by +62 %, BTS by +65 %); Broyden's updates
-      // correct it; a step changes c or G_I by at most a factor 2
-      const Matrix2 J0{{{0.8, 0.1}, {1.1, 0.4}}};
-      const JointSolution j = solve_broyden(residual, {0, 0}, J0, std::log1p(o.tolerance), 12, std::log(2.0));
+      // the first guess of the Jacobian is homogeneous Mohr-Coulomb's in (log c, y): log UCS =
+      // log 2c + y and log(tension) = log 2c - y; Broyden's updates correct it for the disc's
+      // stress state and the scatter. A step changes c by at most a factor 2 and y by 0.3 (phi by
+      // a few degrees)
+      const Matrix2 J0{{{1.0, 1.0}, {1.0, -1.0}}};
+      const JointSolution j = solve_broyden(residual, {0, 0}, J0, std::log1p(o.tolerance), 12, 0.3);
       const CaseParameters c = at(ucs_case, j.x);
       std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%, standard error %.2f); target BTS %.2f MPa: "
                   "simulated %.2f MPa (%+.2f %%, standard error %.2f), over %zu rock%s\n",
                   ucs_target * 1e-6, u.mean * 1e-6, 100 * (u.mean / ucs_target - 1), u.standard_error * 1e-6,
                   bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), b.standard_error * 1e-6,
                   u.peaks.size(), u.peaks.size() == 1 ? "" : "s");
-      std::printf("strength scale %.4f of the case's, fracture energy %.1f J/m^2; run with:\n  --set "
-                  "\"Rock/Cohesion=%.6g\" --set \"Rock/Fracture energy=%.6g\"",
-                  std::exp(j.x[0]), c.rock.fracture_energy, c.rock.cohesion, c.rock.fracture_energy);
+      std::printf("c %.4f MPa, phi %.4f degrees; run with:\n  --set \"Rock/Cohesion=%.6g\" --set \"Rock/Friction "
+                  "angle=%.6g\"",
+                  c.rock.cohesion * 1e-6, c.rock.friction_angle * 180 / pi, c.rock.cohesion,
+                  c.rock.friction_angle * 180 / pi);
       if (c.rock.tensile_strength > 0)
         std::printf(" --set \"Rock/Tensile strength=%.6g\"", c.rock.tensile_strength);
       std::printf("\n");

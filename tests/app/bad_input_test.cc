@@ -186,8 +186,6 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
   expect_bad_input(box, {"calibrate", "--simulate", (box.dir() / "missing.prm").string()}, {"missing.prm"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Scatter length=0.005"},
                    {"Rock/Scatter length", "Rock/Strength scatter > 0"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case},
-                   {"--with-bts", "Rock/Softening law = fracture energy"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--bts", "15"}, {"--bts is the target of --with-bts"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case, "--check", bts_case},
                    {"--check is for the UCS-only calibration"});
@@ -198,8 +196,7 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
     std::ofstream out(other);
     out << in.rdbuf() << "subsection Rock\n  set Group = M2\nend\n";
   }
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", other.string(), "--set",
-                         "Rock/Softening law=fracture energy"},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", other.string()},
                    {"other.prm", "differs from the UCS case's", "one rock"});
 }
 
