@@ -299,12 +299,13 @@ namespace app
     // last two (slope kept within [0.2, 2])
     std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", "cohesion_MPa",
                 "mean_UCS_MPa", "peaks_MPa");
-    double k = 1, previous_k = 0, previous_mean = 0;
+    double k = 1, k_run = 1, previous_k = 0, previous_mean = 0; // k_run: the scale s was run at
     Sample s;
     bool converged = false;
     for (int iteration = 0; iteration < 8; ++iteration)
     {
-      s = sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));
+      k_run = k;
+      s     = sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));
       std::string peaks;
       for (const double v : s.peaks)
       {
@@ -327,6 +328,7 @@ namespace app
       previous_mean = s.mean;
       k *= std::pow(target / s.mean, 1 / slope);
     }
+    k                               = k_run;
     const CaseParameters calibrated = scaled(base, k);
     std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%), standard error over %zu rock%s %.2f MPa\n",
                 target * 1e-6, s.mean * 1e-6, 100 * (s.mean / target - 1), s.peaks.size(),
