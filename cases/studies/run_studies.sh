@@ -99,6 +99,10 @@ run() {
                     --set "Rock/Cohesion=4.69833e+07" --set "Rock/Friction angle=69.5227" \
                     --vary "Platens/Friction coefficient=0,0.3" --vary "Test/Length=0.05,0.1" \
                     --vary "Rock/Scatter seed=1,2,3" ;;
+    # Table 4's phi with c scaled to the UCS alone (cosim calibrate --simulate, c x 1.877)
+    heterogeneous-ucs-calibrated-friction) study heterogeneous-ucs-calibrated-friction $ucs "${het[@]}" \
+                    --set "Rock/Cohesion=6.19148e+07" --vary "Platens/Friction coefficient=0,0.3" \
+                    --vary "Rock/Scatter seed=1,2,3" ;;
     # the same at 1.25 mm with that spacing's calibration (c 50.09 MPa, phi 68.22 deg)
     heterogeneous-calibrated-ucs-friction-1.25mm) study heterogeneous-calibrated-ucs-friction-1.25mm $ucs \
                     "${het[@]}" --set "Rock/Cohesion=5.00875e+07" --set "Rock/Friction angle=68.2224" \
@@ -129,6 +133,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm
+     heterogeneous-ucs-calibrated-friction
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
      heterogeneous-bts-fracture-energy)
 for name in "${@:-${all[@]}}"; do
