@@ -103,6 +103,10 @@ run() {
     heterogeneous-ucs-calibrated-friction) study heterogeneous-ucs-calibrated-friction $ucs "${het[@]}" \
                     --set "Rock/Cohesion=6.19148e+07" --vary "Platens/Friction coefficient=0,0.3" \
                     --vary "Rock/Scatter seed=1,2,3" ;;
+    # ... and with G_I scaled by the strength squared (100 x 1.877^2): Table 4's rock's brittleness
+    heterogeneous-ucs-calibrated-friction-scaled-energy) study heterogeneous-ucs-calibrated-friction-scaled-energy \
+                    $ucs "${het[@]}" --set "Rock/Cohesion=6.19148e+07" --set "Rock/Fracture energy=352" \
+                    --vary "Platens/Friction coefficient=0,0.3" --vary "Rock/Scatter seed=1,2,3" ;;
     # the same at 1.25 mm with that spacing's calibration (c 50.09 MPa, phi 68.22 deg)
     heterogeneous-calibrated-ucs-friction-1.25mm) study heterogeneous-calibrated-ucs-friction-1.25mm $ucs \
                     "${het[@]}" --set "Rock/Cohesion=5.00875e+07" --set "Rock/Friction angle=68.2224" \
