@@ -188,6 +188,7 @@ namespace app
                                  " degrees, outside (0, 90) or below Rock/Dilation angle or Rock/Residual friction angle");
     }
 
+    /// Peaks [Pa] as MPa with two decimals, separated by spaces (csv: semicolons).
     std::string joined(const std::vector<double> &values, const bool csv)
     {
       std::string out;
@@ -306,15 +307,8 @@ namespace app
     {
       k_run = k;
       s     = sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));
-      std::string peaks;
-      for (const double v : s.peaks)
-      {
-        char b[32];
-        std::snprintf(b, sizeof b, "%s%.2f", peaks.empty() ? "" : (o.csv ? ";" : " "), v * 1e-6);
-        peaks += b;
-      }
       std::printf(o.csv ? "%d,%.6f,%.4f,%.3f,%s\n" : "%-9d %10.6f %12.4f %12.3f  %s\n", iteration, k,
-                  base.rock.cohesion * k * 1e-6, s.mean * 1e-6, peaks.c_str());
+                  base.rock.cohesion * k * 1e-6, s.mean * 1e-6, joined(s.peaks, o.csv).c_str());
       std::fflush(stdout);
       if (std::abs(s.mean / target - 1) <= o.tolerance)
       {
