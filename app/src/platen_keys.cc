@@ -55,12 +55,34 @@ namespace app::keys
       return std::string("is read by the kinematic contact on elastic platens only (Contact method = "
                          "kinematic or automatic for UCS, BTS, CTCS, and Model = elastic); leave it at 1e-6");
     });
+    s.add<int>("Contact patch points", pl.contact_patch_points,
+                        "kinematic contact on elastic platens: a particle's force is spread over its patch of the face (its cell's end face), sampled at N x N points; 1 = at one point; 0 = from the element size h and the spacing dx, ceil((2 dx / h)^2) up to 4 (1 for the default elements of 2 dx) [-]",
+                        [](int v) { return v >= 0 && v <= 4; }, "must be in [0, 4] (0 = from the element size)");
+    s.check("Contact patch points", [&p]() {
+      if (p.platens.contact_patch_points == coupling::PlatenParameters().contact_patch_points ||
+          (coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
+           p.platens.steel.model == fem::SteelModel::elastic))
+        return std::string();
+      return std::string("is read by the kinematic contact on elastic platens only (Contact method = "
+                         "kinematic or automatic for UCS, BTS, CTCS, and Model = elastic); leave it at 0");
+    });
     s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
                   "must be in (0, 1e13) Pa");
     s.add<double>("Poissons ratio", steel.poissons_ratio, "[-]", [](double v) { return v >= 0 && v < 0.5; },
                   "must be in [0, 0.5)");
     s.add<double>("Density", steel.density, "[kg/m^3]", [](double v) { return v > 0 && v < 30000; },
                   "must be in (0, 30000) kg/m^3");
+    s.add_enum("Loaded face", steel.loaded_face_lateral, "clamped|roller",
+               {fem::LoadedFaceLateral::fixed, fem::LoadedFaceLateral::free},
+               "elastic platens: the face the ram pushes is clamped (held laterally, a ram bonded to it) "
+               "or a roller (free to expand, a lubricated ram: with a platen of the specimen's diameter "
+               "and free slip the test is then uniaxial throughout)");
+    s.check("Loaded face", [&p]() {
+      return p.platens.steel.loaded_face_lateral == fem::LoadedFaceLateral::fixed ||
+                 p.platens.steel.model == fem::SteelModel::elastic
+               ? std::string()
+               : std::string("is for elastic platens (Model = elastic); a rigid platen has no loaded face of its own");
+    });
     s.add<double>("Thickness", pl.thickness, "along the loading axis [m]", [](double v) { return v > 0 && v <= 10; },
                   "must be in (0, 10] m");
     s.add<double>("Diameter", pl.diameter, "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen",

@@ -417,6 +417,21 @@ namespace coupling
     return fp;
   }
 
+  unsigned int contact_patch_points(const CaseParameters &p)
+  {
+    if (p.platens.contact_patch_points > 0)
+      return static_cast<unsigned int>(p.platens.contact_patch_points);
+    // Elements of two spacings take four to nine particles each: point loads on their nodes are
+    // near their consistent loads (M1 UCS on a platen of the specimen's diameter, 2.5 mm: 280.2
+    // MPa at one point, 279.5 at 2 x 2). Elements of one spacing take about one: the face dimples
+    // under each (248.9 / 254.4 / 270.5 / 274.6 MPa at 1 / 2 / 3 / 4 points), so finer elements
+    // need the patch sampled (2 dx / h)^2 times along each side, as far as 4 (16 points).
+    const double dx = p.sph.spacing;
+    const double h  = fem_parameters(p.platens, 2.0 * dx).element_size;
+    const double n  = std::ceil(std::pow(2.0 * dx / h, 2) - 1e-9);
+    return static_cast<unsigned int>(std::clamp(n, 1.0, 4.0));
+  }
+
   sph::Parameters sph_numerics(const sph::Parameters &sph)
   {
     sph::Parameters p = sph;

@@ -139,6 +139,10 @@ namespace coupling
   /// is left are its waves and vibrations.
   double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
+  /// Platens/Contact patch points as the kinematic contact on an elastic platen uses it: the
+  /// case's value, or for 0 ceil((2 dx / h)^2) for elements of size h and particle spacing dx,
+  /// 1 to 4 (one point for the default elements of two spacings).
+  unsigned int contact_patch_points(const CaseParameters &p);
   /// The FEM body (platen or cutter) of Platens/*: model, steel, and the element size, which
   /// is Platens/Element size where set, else `default_element_size` [m].
   fem::Parameters fem_parameters(const PlatenParameters &platens, double default_element_size);

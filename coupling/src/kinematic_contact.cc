@@ -35,11 +35,65 @@ namespace coupling
     inline double dot(const V3 &a, const V3 &b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
   } // namespace
 
+  void PenaltyContact::share_among_nodes(const double *x, Contact &c, const ContactSurface &s,
+                                         const bool deformable) const
+  {
+    const auto add = [&c](const unsigned int node, const double w) {
+      for (int a = 0; a < c.n_nodes; ++a)
+        if (c.node[a] == node)
+        {
+          c.weight[a] += w;
+          return;
+        }
+      c.node[c.n_nodes]   = node;
+      c.weight[c.n_nodes] = w;
+      ++c.n_nodes;
+    };
+    c.n_nodes = 0;
+    const unsigned int points = deformable ? std::max(1u, prm_.patch_points) : 1u;
+    if (points == 1)
+    {
+      for (int a = 0; a < 4; ++a)
+        add(s.faces[c.hit.face][a], c.hit.weight[a]);
+      return;
+    }
+    // two tangents of the face at the hit, the first along the lattice's x (or y) axis
+    const V3 &nrm = c.hit.normal;
+    V3 t1         = std::abs(nrm[0]) < 0.9 ? V3{1, 0, 0} : V3{0, 1, 0};
+    const double along = dot(t1, nrm);
+    for (int d = 0; d < 3; ++d)
+      t1[d] -= along * nrm[d];
+    const double norm = std::sqrt(dot(t1, t1));
+    for (double &v : t1)
+      v /= norm;
+    const V3 t2{nrm[1] * t1[2] - nrm[2] * t1[1], nrm[2] * t1[0] - nrm[0] * t1[2], nrm[0] * t1[1] - nrm[1] * t1[0]};
+    const double w   = 1.0 / (points * points);
+    const Hit centre = c.hit;
+    double gap       = 0;
+    for (unsigned int i = 0; i < points; ++i)
+      for (unsigned int j = 0; j < points; ++j)
+      {
+        const double a = ((i + 0.5) / points - 0.5) * 2.0 * prm_.radius;
+        const double b = ((j + 0.5) / points - 0.5) * 2.0 * prm_.radius;
+        const double q[3] = {x[0] + a * t1[0] + b * t2[0], x[1] + a * t1[1] + b * t2[1], x[2] + a * t1[2] + b * t2[2]};
+        // a sample point past every face (beyond the platen's rim) loads the hit's face
+        const Hit h       = find_face(q, s);
+        const Hit &on     = (h.face >= 0 && c.n_nodes + 4 <= max_patch_nodes) ? h : centre;
+        for (int k = 0; k < 4; ++k)
+          add(s.faces[on.face][k], w * on.weight[k]);
+        gap += w * on.gap;
+      }
+    // the gap is the patch's mean, as the patch's mean motion (the weights above) closes it
+    c.hit.gap = gap;
+  }
+
   std::size_t PenaltyContact::apply_kinematic(const ContactParticles &pt, const ContactSurface &s, double dt,
                                               std::vector<double> &force_on_particles,
                                               std::vector<double> &force_on_nodes)
   {
     build_face_grid(s);
+    // a deformable face: the same on every process (the face is whole on each)
+    const bool deformable = std::any_of(s.mass.begin(), s.mass.end(), [](double m) { return m > 0; });
     const double mu_s = prm_.friction_static, mu_d = prm_.friction_dynamic;
     const long n      = static_cast<long>(pt.n);
 
@@ -70,35 +124,38 @@ namespace coupling
           fr = FrictionState{};
           continue;
         }
+        Contact c{static_cast<std::int32_t>(i), hit, {0, 0, 0}};
+        share_among_nodes(pt.position + 3 * i, c, s, deformable);
         if (pt.deformation) // the particle's half cell strains with it: held at r (n . F n)
         {
           const double *F = pt.deformation + 9 * i;
-          const auto &nn  = hit.normal;
+          const auto &nn  = c.hit.normal;
           double stretch  = 0;
           for (int a = 0; a < 3; ++a)
             for (int b = 0; b < 3; ++b)
               stretch += nn[a] * F[3 * a + b] * nn[b];
-          hit.gap += prm_.radius * (1.0 - stretch);
+          c.hit.gap += prm_.radius * (1.0 - stretch);
         }
+        // the contact point's velocity: the patch's mean, with the weights the force is shared by
         V3 vm{0, 0, 0};
-        for (int a = 0; a < 4; ++a)
+        for (int a = 0; a < c.n_nodes; ++a)
           for (int d = 0; d < 3; ++d)
-            vm[d] += hit.weight[a] * s.velocity[3 * s.faces[hit.face][a] + d];
+            vm[d] += c.weight[a] * s.velocity[3 * c.node[a] + d];
         V3 vr;
         for (int d = 0; d < 3; ++d)
         {
           const double f = pt.force ? pt.force[3 * i + d] : 0.0;
           vr[d]          = pt.velocity[3 * i + d] + dt * f / pt.mass[i] - vm[d];
         }
-        const double g = hit.gap + dt * dot(vr, hit.normal);
+        const double g = c.hit.gap + dt * dot(vr, c.hit.normal);
         // a bond forms where the particle touches the face (at the start: the end layers at gap 0)
-        const bool touches = g < 0 || (prm_.bonded && (fr.tied || hit.gap <= 0));
+        const bool touches = g < 0 || (prm_.bonded && (fr.tied || c.hit.gap <= 0));
         if (!touches)
         {
           fr.sliding = false;
           continue;
         }
-        mine.push_back({static_cast<std::int32_t>(i), hit, {0, 0, 0}});
+        mine.push_back(c);
         motion.push_back(vr);
       }
     }
@@ -107,10 +164,8 @@ namespace coupling
     node_weight_.assign(s.n_nodes(), 0.0);
     for (const auto &list : contacts_)
       for (const Contact &c : list)
-        for (int a = 0; a < 4; ++a)
-          node_weight_[s.faces[c.hit.face][a]] += c.hit.weight[a];
-    // a deformable face: the same on every process (the face is whole on each)
-    const bool deformable = std::any_of(s.mass.begin(), s.mass.end(), [](double m) { return m > 0; });
+        for (int a = 0; a < c.n_nodes; ++a)
+          node_weight_[c.node[a]] += c.weight[a];
     if (deformable && reduce_sum_) // the other processes' contacts on the same nodes
       reduce_sum_(node_weight_.data(), static_cast<int>(node_weight_.size()));
 
@@ -136,14 +191,14 @@ namespace coupling
     std::vector<double> m_eff(n_all);
     for (std::size_t k = 0; k < n_all; ++k)
     {
-      const Hit &hit      = all[k]->hit;
-      double inverse_mass = 1.0 / pt.mass[all[k]->particle];
-      for (int a = 0; a < 4; ++a)
+      const Contact &c    = *all[k];
+      double inverse_mass = 1.0 / pt.mass[c.particle];
+      for (int a = 0; a < c.n_nodes; ++a)
       {
-        const unsigned int node = s.faces[hit.face][a];
+        const unsigned int node = c.node[a];
         const double m          = s.mass[node];
-        if (m > 0 && hit.weight[a] > 0)
-          inverse_mass += hit.weight[a] * node_weight_[node] / m; // w^2 / (m w / sum w)
+        if (m > 0 && c.weight[a] > 0)
+          inverse_mass += c.weight[a] * node_weight_[node] / m; // w^2 / (m w / sum w)
       }
       m_eff[k] = 1.0 / inverse_mass;
     }
@@ -203,12 +258,12 @@ namespace coupling
       {
         std::fill(node_shift.begin(), node_shift.end(), 0.0);
         for (std::size_t k = 0; k < n_all; ++k)
-          for (int a = 0; a < 4; ++a)
+          for (int a = 0; a < all[k]->n_nodes; ++a)
           {
-            const unsigned int node = s.faces[all[k]->hit.face][a];
+            const unsigned int node = all[k]->node[a];
             if (s.mass[node] > 0)
               for (int d = 0; d < 3; ++d)
-                node_shift[3 * node + d] -= dt * dt * all[k]->hit.weight[a] * all[k]->force[d] / s.mass[node];
+                node_shift[3 * node + d] -= dt * dt * all[k]->weight[a] * all[k]->force[d] / s.mass[node];
           }
         if (reduce_sum_) // the nodes also move under the other processes' contacts
           reduce_sum_(node_shift.data(), static_cast<int>(node_shift.size()));
@@ -220,11 +275,11 @@ namespace coupling
         for (int d = 0; d < 3; ++d)
           moved[k][d] = dt * vr[d] + dt * dt * all[k]->force[d] / mp;
         if (deformable)
-          for (int a = 0; a < 4; ++a)
+          for (int a = 0; a < all[k]->n_nodes; ++a)
           {
-            const unsigned int node = s.faces[all[k]->hit.face][a];
+            const unsigned int node = all[k]->node[a];
             for (int d = 0; d < 3; ++d)
-              moved[k][d] -= all[k]->hit.weight[a] * node_shift[3 * node + d];
+              moved[k][d] -= all[k]->weight[a] * node_shift[3 * node + d];
           }
       }
     };
@@ -256,6 +311,7 @@ namespace coupling
           worst = reduce_max_(worst);
         if (worst < tolerance)
           break;
+
         for (std::size_t k = 0; k < n_all; ++k)
           next[k] = correct(k, all[k]->force, moved[k]);
         for (std::size_t k = 0; k < n_all; ++k)
@@ -294,12 +350,9 @@ namespace coupling
         dissipated += c.hit.dissipated;
         for (int d = 0; d < 3; ++d)
           force_on_particles[3 * c.particle + d] += c.force[d];
-        for (int a = 0; a < 4; ++a)
-        {
-          const unsigned int node_id = s.faces[c.hit.face][a];
+        for (int a = 0; a < c.n_nodes; ++a)
           for (int d = 0; d < 3; ++d)
-            force_on_nodes[3 * node_id + d] -= c.hit.weight[a] * c.force[d];
-        }
+            force_on_nodes[3 * c.node[a] + d] -= c.weight[a] * c.force[d];
       }
     normal_force_   = fn_sum;
     penalty_energy_ = 0;

@@ -383,6 +383,13 @@ namespace coupling
     const double s       = prm_.platens.contact_stiffness_scale;
     dt_                  = kinematic ? dt_sph : coupled_time_step(dt_sph, s * largest_factor);
     const double dt_fem = std::min(top_->stable_time_step(), bottom_->stable_time_step());
+    // The kinematic constraint predicts where an elastic face ends the step from its nodes' free
+    // accelerations held over the step (predicted_contact_surface): exact over one platen step,
+    // not over sub-steps, between which the face's internal force changes (2.5 mm elements
+    // under 2.5 mm particles took 2 sub-steps: the end faces bumpy, the energy balance 1.7 % to
+    // 9 % off). So the kinematic contact steps both bodies at the smaller stable step.
+    if (kinematic && std::isfinite(dt_fem))
+      dt_ = std::min(dt_, dt_fem);
     // the platens sub-cycle when their stable step is the smaller one; the contact force is held
     // over the sub-steps so the impulse exchanged, f dt, is the same on both sides
     n_substeps_ = std::isfinite(dt_fem) ? std::max(1, int(std::ceil(dt_ / dt_fem))) : 1;
@@ -409,6 +416,7 @@ namespace coupling
     cp.method           = contact_method(prm_);
     cp.bonded           = prm_.platens.bonded;
     cp.tolerance        = prm_.platens.contact_tolerance;
+    cp.patch_points     = contact_patch_points(prm_);
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, n_contact);

@@ -75,6 +75,10 @@ namespace coupling
     /// kinematic on elastic platens: the contacts' joint solution stops when every end gap is
     /// below this fraction of the contact radius [-]
     double contact_tolerance = 1e-6;
+    /// kinematic on elastic platens: a particle's force spread over its contact patch, sampled
+    /// at this many points along each side (ContactParameters::patch_points) [-]; 0 = from the
+    /// platen's element size h against the particle spacing dx: ceil((2 dx / h)^2), 1 to 4
+    int contact_patch_points = 0;
     double thickness = 0.02;      ///< platen thickness along the loading axis [m]
     double diameter = 0.0;        ///< platen diameter (UCS/CTCS) or width (BTS) [m]; 0 = from specimen
     /// penalty stiffness / its stability bound at the rock's own step [-]; the coupled step is

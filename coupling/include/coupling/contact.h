@@ -89,6 +89,15 @@ namespace coupling
     /// Kinematic on a deformable face: the sweeps stop when every end gap and stuck slip is below
     /// this fraction of the contact radius [-]
     double tolerance = 1e-6;
+    /// Kinematic on a deformable face: a particle's force is spread over its contact patch (the
+    /// square of side 2 r in the face's plane, its cell's end face), sampled at patch_points x
+    /// patch_points points projected onto the faces, not put on the face at one point [-]. A point
+    /// load dimples an elastic face by about F / (E h): at the platen elements of a particle
+    /// spacing that is the particle's own end strain, the face is bumpy at the particle scale and
+    /// gets bumpier as the mesh is refined. Patches tile the end face, so a uniform pressure
+    /// gives the face nodes (nearly) their consistent loads. 1 = the point (as on a rigid face,
+    /// which has no stiffness of its own); elements of two spacings need no more.
+    unsigned int patch_points = 1;
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
@@ -176,6 +185,8 @@ namespace coupling
     void load_state(const std::map<std::string, std::vector<double>> &in, const std::string &prefix);
 
   private:
+    /// The most face nodes one kinematic contact's patch is shared among.
+    static constexpr int max_patch_nodes = 25;
     struct Hit
     {
       int face   = -1;
@@ -217,7 +228,15 @@ namespace coupling
       std::int32_t particle;
       Hit hit;
       std::array<double, 3> force;
+      /// kinematic: the face nodes the force is shared among and their weights (summing to one):
+      /// hit's four, or on a deformable face those of the contact patch (ContactParameters::
+      /// patch_points)
+      int n_nodes = 0;
+      std::array<unsigned int, max_patch_nodes> node{};
+      std::array<double, max_patch_nodes> weight{};
     };
+    /// Fills c's nodes and weights: hit's face, or the patch around the particle at x.
+    void share_among_nodes(const double *x, Contact &c, const ContactSurface &surface, bool deformable) const;
     /// Per thread: the contacts found in its chunk of particles (contiguous chunks in thread
     /// order, so the lists end to end are in particle order). Only the few particles near the
     /// platen are stored, not a record per particle.
