@@ -310,7 +310,8 @@ TEST(CoupledKinematic, ElasticPlatensOfTheSpecimensDiameterOnRollersGiveTheUniax
   EXPECT_LT(s.energy_balance_error, 0.01);
   // the end face at half the peak against cosim reference's (uniform: 282.193 MPa, its closed
   // form): 5 % RMS, as with bonded ends; measured 2.6 % (the end layer's particle-scale
-  // unevenness; a rim left without contact loads the ring inside it 6 % above the mean)
+  // unevenness; at 2.5 mm a rim left without contact loaded the ring inside it 6 % above the
+  // mean)
   ReferenceOptions o;
   o.interface = ReferenceInterface::free_slip;
   o.platens   = ReferencePlatens::elastic;
