@@ -127,6 +127,24 @@ run() {
     heterogeneous-ucs-strain-softening) study heterogeneous-ucs-strain-softening $ucs \
                     --set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" \
                     --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # elastic steel platens (60 mm wide, clamped to the rams) on the heterogeneous rock: end
+    # friction and bonded ends, and the platen mesh (frictionless)
+    heterogeneous-ucs-elastic-platens) study heterogeneous-ucs-elastic-platens $ucs "${het[@]}" \
+                    --set "Platens/Model=elastic" --vary "Platens/Friction coefficient=0,0.1,0.3" \
+                    --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-ucs-elastic-bonded) study heterogeneous-ucs-elastic-bonded $ucs "${het[@]}" \
+                    --set "Platens/Model=elastic" --set "Platens/Bonded=true" --vary "Rock/Scatter seed=1,2,3" ;;
+    heterogeneous-ucs-elastic-mesh) study heterogeneous-ucs-elastic-mesh $ucs "${het[@]}" \
+                    --set "Platens/Model=elastic" --vary "Platens/Element size=0.01,0.005,0.0025" \
+                    --vary "Rock/Scatter seed=1,2,3" ;;
+    # steel platens of the specimen's diameter on rollers (uniaxial throughout), perfectly plastic
+    # and with the default softening: spacing with the elements at two spacings, and the mesh
+    platens-rollers-spacing) study platens-rollers-spacing $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-rollers-mesh) study platens-rollers-mesh $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
@@ -139,7 +157,8 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm
      heterogeneous-ucs-calibrated-friction
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
-     heterogeneous-bts-fracture-energy)
+     heterogeneous-bts-fracture-energy heterogeneous-ucs-elastic-platens heterogeneous-ucs-elastic-bonded
+     heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
