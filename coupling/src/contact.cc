@@ -265,8 +265,8 @@ namespace coupling
         // a convex master counts a face reached across an edge within a particle diameter of
         // that edge; a flat or concave one within r of it along the face (tangentially)
         const double t2 = dot(r_clamped, r_clamped) - distance * distance;
-        if (prm_.convex_master ? dot(r_clamped, r_clamped) > 4.0 * prm_.radius * prm_.radius :
-                                 t2 > prm_.radius * prm_.radius)
+        const double reach = past_rim ? std::max(prm_.radius, prm_.rim_reach) : prm_.radius;
+        if (prm_.convex_master ? dot(r_clamped, r_clamped) > 4.0 * prm_.radius * prm_.radius : t2 > reach * reach)
           continue;
       }
       else if (prm_.convex_master)

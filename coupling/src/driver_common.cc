@@ -417,6 +417,20 @@ namespace coupling
     return fp;
   }
 
+  double rim_sagitta(const fem::SteelBody &platen)
+  {
+    // the contact face's nodes on its largest radius are the rim polygon's vertices
+    const std::vector<double> x = platen.contact_positions();
+    double radius               = 0;
+    for (std::size_t i = 0; i < x.size(); i += 3)
+      radius = std::max(radius, std::hypot(x[i], x[i + 1]));
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < x.size(); i += 3)
+      if (std::hypot(x[i], x[i + 1]) > (1 - 1e-9) * radius)
+        ++n;
+    return n >= 3 ? radius * (1 - std::cos(M_PI / static_cast<double>(n))) : 0.0;
+  }
+
   unsigned int contact_patch_points(const CaseParameters &p)
   {
     if (p.platens.contact_patch_points > 0)

@@ -139,6 +139,10 @@ namespace coupling
   /// is left are its waves and vibrations.
   double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
+  /// How far a cylinder platen's contact face (a polygon of n rim vertices on radius R) lies
+  /// inside its circle at the chords' middles, R (1 - cos(pi / n)) [m] (ContactParameters::rim_reach).
+  double rim_sagitta(const fem::SteelBody &platen);
+
   /// Platens/Contact patch points as the kinematic contact on an elastic platen uses it: the
   /// case's value, or for 0 ceil((2 dx / h)^2) for elements of size h and particle spacing dx,
   /// 1 to 4 (one point for the default elements of two spacings).

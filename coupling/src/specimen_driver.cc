@@ -417,6 +417,8 @@ namespace coupling
     cp.bonded           = prm_.platens.bonded;
     cp.tolerance        = prm_.platens.contact_tolerance;
     cp.patch_points     = contact_patch_points(prm_);
+    if (!bts_) // the cylinder platens' rim polygons: inside their circle by the chords' sagitta
+      cp.rim_reach = std::max(rim_sagitta(*top_), rim_sagitta(*bottom_));
     const std::size_t n_contact = domain_ ? domain_->owned_indices().size() : body_->n_particles();
     contact_top_    = std::make_unique<PenaltyContact>(cp, n_contact);
     contact_bottom_ = std::make_unique<PenaltyContact>(cp, n_contact);

@@ -98,6 +98,10 @@ namespace coupling
     /// gives the face nodes (nearly) their consistent loads. 1 = the point (as on a rigid face,
     /// which has no stiffness of its own); elements of two spacings need no more.
     unsigned int patch_points = 1;
+    /// Kinematic, flat or concave master: how far past the mesh's outer edge (tangentially) a
+    /// particle keeps that edge's face [m]; at least r. A platen's rim polygon lies inside its
+    /// circle by up to R (1 - cos(pi / n)) for n rim vertices, which the driver passes here.
+    double rim_reach = 0.0;
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
