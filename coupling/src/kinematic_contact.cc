@@ -6,7 +6,8 @@
 /// exactly onto the face is
 ///   f_n = -m_eff g* / dt^2,   1 / m_eff = 1 / m_particle + sum_a w_a^2 / m_a,share,
 /// the face's node masses shared among the particles that touch them in proportion to their
-/// shape-function weights w_a (m_a,share = m_a w_a / sum over the node's contacts of w), so that
+/// shape-function weights w_a (on a deformable face, with ContactParameters::patch_points > 1,
+/// the mean weights over the particle's patch, and the gap the patch's mean: share_among_nodes) (m_a,share = m_a w_a / sum over the node's contacts of w), so that
 /// several particles on one node do not each move it as if alone; on a deformable face the
 /// contacts are then corrected together (projected Jacobi sweeps, see step 3) until each ends
 /// the step on the moved face. A rigid master has no mass: m_eff is the particle's, and one pass
