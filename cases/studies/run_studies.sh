@@ -142,6 +142,10 @@ run() {
     platens-rollers-spacing) study platens-rollers-spacing $ucs --set "Platens/Model=elastic" \
                     --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # the same platens 0.5 to 2 mm wider than the specimen (ISRM allows up to D + 2 mm)
+    platens-rollers-overhang) study platens-rollers-overhang $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Loaded face=roller" --vary "Rock/Residual fraction=1,0.1" \
+                    --vary "Platens/Diameter=0.05,0.0505,0.051,0.052" ;;
     platens-rollers-mesh) study platens-rollers-mesh $ucs --set "Platens/Model=elastic" \
                     --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
@@ -158,7 +162,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      heterogeneous-ucs-calibrated-friction
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
      heterogeneous-bts-fracture-energy heterogeneous-ucs-elastic-platens heterogeneous-ucs-elastic-bonded
-     heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh)
+     heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh platens-rollers-overhang)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
