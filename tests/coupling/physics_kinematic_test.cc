@@ -325,8 +325,9 @@ TEST(CoupledKinematic, ElasticPlatensOfTheSpecimensDiameterOnRollersGiveTheUniax
 
 TEST(CoupledKinematic, TheInterfacesOneNumericalParameterTimesAndOverFourKeepsTheResult)
 {
-  // the kinematic interface has no stiffness; its one numerical constant is the tolerance of the
-  // joint solution on a deformable face (Platens/Contact tolerance, 1e-6 of the contact radius).
+  // the kinematic interface has no stiffness; its numerical constant is the tolerance of the
+  // joint solution on a deformable face (Platens/Contact tolerance, 1e-6 of the contact radius;
+  // the patch points, its other setting, are measured in cases/studies/platens/README.md).
   // UCS on elastic platens at 5 mm (for time), the tolerance x4 and /4: the peak must move by
   // less than 0.5 % and the platen-read modulus by less than 1 % (the interface's targets;
   // measured 0.018 % and 0.001 %)
