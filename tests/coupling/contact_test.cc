@@ -657,3 +657,27 @@ TEST(ContactKinematic, APatchSpreadsAUniformPushOverTheNodesAsAPressure)
   EXPECT_LT(over_patches, 1e-3);
   EXPECT_GT(at_points, 0.1);
 }
+
+TEST(ContactKinematic, AParticlePastTheOuterEdgeIsHeldWithinTheRimReach)
+{
+  // A platen's mesh ends in a polygon inside its circle; a specimen as wide as the platen has
+  // rim particles past it. The kinematic contact holds a particle past the outer edge by up to
+  // r, or by ContactParameters::rim_reach where that is larger (the polygon's sagitta), and
+  // no farther: here 1.5 r past the edge of a 10 mm face, pressed into its plane.
+  const double r = 5e-4, dt = 1e-6;
+  const ContactSurface s = flat_surface(1, 0.01, 0.0, 0.0);
+  std::vector<double> x{0.01 + 1.5 * r, 0.005, 0.9 * r}, v{0, 0, -0.1}, m{1e-3};
+  auto held = [&](const double reach) {
+    ContactParameters prm;
+    prm.method    = ContactMethod::kinematic;
+    prm.radius    = r;
+    prm.rim_reach = reach;
+    PenaltyContact contact(prm, 1);
+    std::vector<double> fp(3, 0.0), fn(12, 0.0);
+    return contact.apply({x.data(), v.data(), m.data(), 1}, s, dt, fp, fn) == 1 && fp[2] > 0;
+  };
+  EXPECT_FALSE(held(0.0)); // r alone: 1.5 r is too far
+  EXPECT_TRUE(held(2.0 * r));
+  x[0] = 0.01 + 0.5 * r; // within r of the edge: held without a rim reach
+  EXPECT_TRUE(held(0.0));
+}
