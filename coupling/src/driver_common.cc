@@ -417,6 +417,11 @@ namespace coupling
     return fp;
   }
 
+  fem::Parameters specimen_platen_parameters(const CaseParameters &p)
+  {
+    return fem_parameters(p.platens, 2.0 * p.sph.spacing);
+  }
+
   double rim_sagitta(const fem::SteelBody &platen)
   {
     // the contact face's nodes on its largest radius are the rim polygon's vertices
@@ -441,7 +446,7 @@ namespace coupling
     // under each (248.9 / 254.4 / 270.5 / 274.6 MPa at 1 / 2 / 3 / 4 points), so finer elements
     // need the patch sampled (2 dx / h)^2 times along each side, as far as 4 (16 points).
     const double dx = p.sph.spacing;
-    const double h  = fem_parameters(p.platens, 2.0 * dx).element_size;
+    const double h  = specimen_platen_parameters(p).element_size;
     const double n  = std::ceil(std::pow(2.0 * dx / h, 2) - 1e-9);
     return static_cast<unsigned int>(std::clamp(n, 1.0, 4.0));
   }
@@ -563,17 +568,14 @@ namespace coupling
     return s;
   }
 
-  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, const double dt, const int n_substeps)
+  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, const double dt)
   {
     ContactSurface s = contact_surface(platen);
     if (platen.is_rigid())
       return s;
-    const double c              = (n_substeps + 1) / (2.0 * n_substeps);
     const std::vector<double> a = platen.contact_free_accelerations();
     for (std::size_t i = 0; i < s.velocity.size(); ++i)
-      s.velocity[i] += dt * c * a[i];
-    for (double &m : s.mass)
-      m /= c;
+      s.velocity[i] += dt * a[i];
     return s;
   }
 

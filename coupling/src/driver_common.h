@@ -139,6 +139,10 @@ namespace coupling
   /// is left are its waves and vibrations.
   double non_affine_kinetic_energy(const sph::Body<3> &body, const sph::Domain *domain = nullptr);
 
+  /// The platens of UCS, BTS and CTCS: fem_parameters() with elements of two particle spacings
+  /// unless Platens/Element size says otherwise.
+  fem::Parameters specimen_platen_parameters(const CaseParameters &p);
+
   /// How far a cylinder platen's contact face (a polygon of n rim vertices on radius R) lies
   /// inside its circle at the chords' middles, R (1 - cos(pi / n)) [m] (ContactParameters::rim_reach).
   double rim_sagitta(const fem::SteelBody &platen);
@@ -159,15 +163,13 @@ namespace coupling
   ContactSurface contact_surface(const fem::SteelBody &platen);
 
   /// The surface as the kinematic constraint needs it for a coupled step dt that the body takes
-  /// in n_substeps sub-steps with the contact force held: the node velocities are the mean
-  /// velocities of the body's free motion over the step, v + dt a (n + 1) / (2 n) with a its own
-  /// acceleration (fem::SteelBody::contact_free_accelerations()), and the node masses are scaled
-  /// by 2 n / (n + 1), so that a force F held over the sub-steps moves a node by dt^2 F / m as the
-  /// rock's step moves a particle (central differences: x_n = x + dt v + dt^2 (a + F / m)
-  /// (n + 1) / (2 n)). Without the body's own acceleration the constraint ignores the face's
-  /// elastic push-back and the rock ends each step inside a loaded elastic platen. Rigid bodies:
-  /// contact_surface().
-  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, double dt, int n_substeps);
+  /// in one step (the specimen driver does not sub-cycle it): the node velocities are those of
+  /// the body's free motion over the step, v + dt a with a its own acceleration
+  /// (fem::SteelBody::contact_free_accelerations()), so that a force F moves a node by
+  /// dt^2 F / m as the rock's step moves a particle. Without the body's own acceleration the
+  /// constraint ignores the face's elastic push-back and the rock ends each step inside a loaded
+  /// elastic platen. Rigid bodies: contact_surface().
+  ContactSurface predicted_contact_surface(const fem::SteelBody &platen, double dt);
 
   /// History rows in a checkpoint: the first `width` fields of HistoryRow in declaration order
   /// (13: the laboratory tests, without the cutting forces; 15: every field).

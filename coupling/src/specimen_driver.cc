@@ -192,7 +192,7 @@ namespace coupling
   void SpecimenDriver::build_platens()
   {
     const double dx = prm_.sph.spacing;
-    fem::Parameters fp = fem_parameters(prm_.platens, 2.0 * dx);
+    fem::Parameters fp = specimen_platen_parameters(prm_);
 
     fem::BodyGeometry g;
     g.thickness = prm_.platens.thickness;
@@ -500,9 +500,9 @@ namespace coupling
     // kinematic contact takes their velocities over the coming step, predicted_contact_surface)
     const bool kinematic = contact_method(prm_) == ContactMethod::kinematic;
     const ContactSurface s_top =
-      kinematic ? predicted_contact_surface(*top_, dt_, n_substeps_) : contact_surface(*top_);
+      kinematic ? predicted_contact_surface(*top_, dt_) : contact_surface(*top_);
     const ContactSurface s_bottom =
-      kinematic ? predicted_contact_surface(*bottom_, dt_, n_substeps_) : contact_surface(*bottom_);
+      kinematic ? predicted_contact_surface(*bottom_, dt_) : contact_surface(*bottom_);
     const auto &x = body_->positions();
     const auto &v = body_->velocities();
     ContactParticles particles{x.front().data(), v.front().data(), body_->masses().data(),
