@@ -71,6 +71,10 @@ namespace coupling
     const double w   = 1.0 / (points * points);
     const Hit centre = c.hit;
     double gap       = 0;
+    // the hit's nodes first (weight 0 until a sample lands on them): a sample whose face's nodes
+    // would not fit in the list falls back onto them without growing it
+    for (int k = 0; k < 4; ++k)
+      add(s.faces[centre.face][k], 0.0);
     for (unsigned int i = 0; i < points; ++i)
       for (unsigned int j = 0; j < points; ++j)
       {
