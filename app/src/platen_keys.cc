@@ -46,25 +46,25 @@ namespace app::keys
     s.add<double>("Contact tolerance", pl.contact_tolerance,
                   "kinematic contact on elastic platens: the contacts sharing face nodes are solved together until every end gap is below this fraction of the contact radius [-]",
                   [](double v) { return v > 0 && v <= 1e-2; }, "must be in (0, 0.01]");
-    s.check("Contact tolerance", [&p]() {
-      // read by the kinematic contact on elastic platens only
-      if (p.platens.contact_tolerance == coupling::PlatenParameters().contact_tolerance ||
-          (coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
-           p.platens.steel.model == fem::SteelModel::elastic))
+    // a setting read by the kinematic contact on elastic platens only: refused elsewhere unless
+    // left at its default
+    const auto elastic_kinematic_only = [&p](const bool at_default, const std::string &default_value) {
+      if (at_default || (coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
+                         p.platens.steel.model == fem::SteelModel::elastic))
         return std::string();
-      return std::string("is read by the kinematic contact on elastic platens only (Contact method = "
-                         "kinematic or automatic for UCS, BTS, CTCS, and Model = elastic); leave it at 1e-6");
+      return "is read by the kinematic contact on elastic platens only (Contact method = kinematic or automatic "
+             "for UCS, BTS, CTCS, and Model = elastic); leave it at " +
+             default_value;
+    };
+    s.check("Contact tolerance", [&p, elastic_kinematic_only]() {
+      return elastic_kinematic_only(p.platens.contact_tolerance == coupling::PlatenParameters().contact_tolerance, "1e-6");
     });
     s.add<int>("Contact patch points", pl.contact_patch_points,
-                        "kinematic contact on elastic platens: a particle's force is spread over its patch of the face (its cell's end face), sampled at N x N points; 1 = at one point; 0 = from the element size h and the spacing dx, ceil((2 dx / h)^2) up to 4 (1 for the default elements of 2 dx) [-]",
-                        [](int v) { return v >= 0 && v <= 4; }, "must be in [0, 4] (0 = from the element size)");
-    s.check("Contact patch points", [&p]() {
-      if (p.platens.contact_patch_points == coupling::PlatenParameters().contact_patch_points ||
-          (coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
-           p.platens.steel.model == fem::SteelModel::elastic))
-        return std::string();
-      return std::string("is read by the kinematic contact on elastic platens only (Contact method = "
-                         "kinematic or automatic for UCS, BTS, CTCS, and Model = elastic); leave it at 0");
+               "kinematic contact on elastic platens: a particle's force is spread over its patch of the face (its cell's end face), sampled at N x N points; 1 = at one point; 0 = from the element size h and the spacing dx, ceil((2 dx / h)^2) up to 4 (1 for the default elements of 2 dx) [-]",
+               [](int v) { return v >= 0 && v <= 4; }, "must be in [0, 4] (0 = from the element size)");
+    s.check("Contact patch points", [&p, elastic_kinematic_only]() {
+      return elastic_kinematic_only(
+        p.platens.contact_patch_points == coupling::PlatenParameters().contact_patch_points, "0");
     });
     s.add<double>("Youngs modulus", steel.youngs_modulus, "[Pa]", [](double v) { return v > 0 && v < 1e13; },
                   "must be in (0, 1e13) Pa");
@@ -78,10 +78,14 @@ namespace app::keys
                "or a roller (free to expand, a lubricated ram: with a platen of the specimen's diameter "
                "and free slip the test is then uniaxial throughout)");
     s.check("Loaded face", [&p]() {
-      return p.platens.steel.loaded_face_lateral == fem::LoadedFaceLateral::fixed ||
-                 p.platens.steel.model == fem::SteelModel::elastic
+      if (p.platens.steel.loaded_face_lateral == fem::LoadedFaceLateral::fixed)
+        return std::string();
+      if (p.platens.steel.model != fem::SteelModel::elastic)
+        return std::string("is for elastic platens (Model = elastic); a rigid platen has no loaded face of its own");
+      // the cutting driver holds its cutter's loaded face (cutting_driver.cc)
+      return p.test == "UCS" || p.test == "BTS" || p.test == "CTCS"
                ? std::string()
-               : std::string("is for elastic platens (Model = elastic); a rigid platen has no loaded face of its own");
+               : "is for the specimen tests' platens (UCS, BTS, CTCS); " + p.test + " clamps its cutter: leave it clamped";
     });
     s.add<double>("Thickness", pl.thickness, "along the loading axis [m]", [](double v) { return v > 0 && v <= 10; },
                   "must be in (0, 10] m");

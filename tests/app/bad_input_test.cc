@@ -510,6 +510,16 @@ TEST(BadInput, CutTooShortForTheDiscToEnterTheRock)
                    {"Cutter/Cut length", "too short", "80.8"});
 }
 
+TEST(BadInput, LoadedFaceRollerIsForTheSpecimenTestsPlatens)
+{
+  // a cutter's loaded face is held by the cutting driver: a roller there would be read and ignored
+  Sandbox box;
+  expect_bad_input(box,
+                   {"run", source("cases/indentation/indentation.prm"), "--set", "Platens/Model=elastic", "--set",
+                    "Platens/Loaded face=roller"},
+                   {"Platens/Loaded face", "UCS, BTS, CTCS", "clamped"});
+}
+
 TEST(BadInput, BodyFittedParticlesAreForTheCylinderAndTheDisc)
 {
   // the cutting block is a lattice (flat faces); a body-fitted arrangement there would be a key
