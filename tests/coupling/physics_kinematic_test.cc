@@ -107,6 +107,19 @@ namespace
     return kinematic_case("ucs/ucs.prm", settings);
   }
 
+  /// cosim reference's solution of the perfectly plastic case p with bonded ends on `platens`
+  /// (Q2, 8 elements per radius, 60 increments to 0.6 % strain)
+  ReferenceResult bonded_reference(const CaseParameters &p, const ReferencePlatens platens)
+  {
+    ReferenceOptions o;
+    o.interface    = ReferenceInterface::bonded;
+    o.platens      = platens;
+    o.n_radial     = 8;
+    o.n_increments = 60;
+    o.end_strain   = 0.006;
+    return run_reference_cylinder(p, o);
+  }
+
   double peak(const CaseParameters &p)
   {
     RunObserver quiet;
@@ -231,14 +244,8 @@ TEST(CoupledKinematic, BondedRigidPlatensGiveTheFeReferencePeak)
   // (+0.2 %); the reference itself moves 1.2 % between 4 and 8 elements per radius
   CaseParameters p = perfectly_plastic_ucs({"Platens/Bonded=true", "Output/Snapshots=80"});
   EndFaceObserver face(p.sph.spacing, 0.5 * p.diameter);
-  const double coupled = run_case(p, face).peak_stress;
-  ReferenceOptions o;
-  o.interface    = ReferenceInterface::bonded;
-  o.platens      = ReferencePlatens::rigid;
-  o.n_radial     = 8;
-  o.n_increments = 60;
-  o.end_strain   = 0.006;
-  const ReferenceResult r = run_reference_cylinder(p, o);
+  const double coupled    = run_case(p, face).peak_stress;
+  const ReferenceResult r = bonded_reference(p, ReferencePlatens::rigid);
   const double rms        = end_face_rms(face, coupled, r, 0.5 * p.diameter);
   std::cout << "[bonded] coupled " << coupled / 1e6 << " MPa, reference " << r.peak_stress / 1e6
             << " MPa (" << r.end_reason << "); end face at half the peak: RMS " << rms << "\n";
@@ -262,14 +269,8 @@ TEST(CoupledKinematic, BondedElasticPlatensGiveTheFeReferencePeakAndEndFace)
   // bound by the plateau)
   CaseParameters p = perfectly_plastic_ucs({"Platens/Model=elastic", "Platens/Bonded=true", "Output/Snapshots=80"});
   EndFaceObserver face(p.sph.spacing, 0.5 * p.diameter);
-  const double coupled = run_case(p, face).peak_stress;
-  ReferenceOptions o;
-  o.interface    = ReferenceInterface::bonded;
-  o.platens      = ReferencePlatens::elastic;
-  o.n_radial     = 8;
-  o.n_increments = 60;
-  o.end_strain   = 0.006;
-  const ReferenceResult r = run_reference_cylinder(p, o);
+  const double coupled    = run_case(p, face).peak_stress;
+  const ReferenceResult r = bonded_reference(p, ReferencePlatens::elastic);
   const double rms        = end_face_rms(face, coupled, r, 0.5 * p.diameter);
   std::cout << "[elastic bonded] coupled " << coupled / 1e6 << " MPa, reference " << r.peak_stress / 1e6
             << " MPa; end face at half the peak: RMS " << rms << "\n";
