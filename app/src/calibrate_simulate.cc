@@ -169,22 +169,20 @@ namespace app
                          " differs from the UCS case's: the two cases must describe one rock (set it in both, or by --set)");
     }
 
-    constexpr double pi = 3.14159265358979323846;
-
     /// The friction angle's coordinate of the joint fit: y = log tan(pi/4 + phi/2), the log of
     /// sqrt(N) in Mohr-Coulomb's UCS = 2 c sqrt(N), uniaxial tension = 2 c / sqrt(N).
-    double friction_coordinate(const double phi) { return std::log(std::tan(pi / 4 + phi / 2)); }
-    double friction_angle_of(const double y) { return 2 * std::atan(std::exp(y)) - pi / 2; }
+    double friction_coordinate(const double phi) { return std::log(std::tan(M_PI / 4 + phi / 2)); }
+    double friction_angle_of(const double y) { return 2 * std::atan(std::exp(y)) - M_PI / 2; }
 
     /// A friction angle below the dilation or residual friction angle (the reader refuses it)
     /// stops the fit.
     void require_friction_angle(const CaseParameters &p)
     {
       const double phi = p.rock.friction_angle;
-      if (!(phi > 0 && phi < pi / 2) || p.rock.dilation_angle > phi ||
+      if (!(phi > 0 && phi < M_PI / 2) || p.rock.dilation_angle > phi ||
           (p.rock.residual_friction_angle > 0 && p.rock.residual_friction_angle > phi))
         throw std::runtime_error("cosim calibrate --with-bts: the fit reached a friction angle of " +
-                                 std::to_string(phi * 180 / pi) +
+                                 std::to_string(phi * 180 / M_PI) +
                                  " degrees, outside (0, 90) or below Rock/Dilation angle or Rock/Residual friction angle");
     }
 
@@ -223,7 +221,7 @@ namespace app
       const auto residual = [&](const Vector2 &x) -> Vector2 {
         const CaseParameters pu = at(ucs_case, x), pb = at(bts_case, x);
         require_friction_angle(pu);
-        const double phi = pu.rock.friction_angle * 180 / pi;
+        const double phi = pu.rock.friction_angle * 180 / M_PI;
         char what[96];
         std::snprintf(what, sizeof what, "c %.3f MPa, phi %.3f deg", pu.rock.cohesion * 1e-6, phi);
         u = sample(pu, o.seeds, std::string("UCS at ") + what);
@@ -248,8 +246,8 @@ namespace app
                   u.peaks.size(), u.peaks.size() == 1 ? "" : "s");
       std::printf("c %.4f MPa, phi %.4f degrees; run with:\n  --set \"Rock/Cohesion=%.6g\" --set \"Rock/Friction "
                   "angle=%.6g\"",
-                  c.rock.cohesion * 1e-6, c.rock.friction_angle * 180 / pi, c.rock.cohesion,
-                  c.rock.friction_angle * 180 / pi);
+                  c.rock.cohesion * 1e-6, c.rock.friction_angle * 180 / M_PI, c.rock.cohesion,
+                  c.rock.friction_angle * 180 / M_PI);
       if (c.rock.tensile_strength > 0)
         std::printf(" --set \"Rock/Tensile strength=%.6g\"", c.rock.tensile_strength);
       std::printf("\n");
@@ -322,7 +320,7 @@ namespace app
       previous_mean = s.mean;
       k *= std::pow(target / s.mean, 1 / slope);
     }
-    k                               = k_run;
+    k                               = k_run; // the last scale run, not the next guess
     const CaseParameters calibrated = scaled(base, k);
     std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%), standard error over %zu rock%s %.2f MPa\n",
                 target * 1e-6, s.mean * 1e-6, 100 * (s.mean / target - 1), s.peaks.size(),

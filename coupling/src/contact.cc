@@ -170,7 +170,7 @@ namespace coupling
     // face contains the particle's projection (see below)
     Hit across;
     // kinematic, flat or concave master: the face whose outer edge the particle is past by less
-    // than r (below), used only when neither of the above holds it
+    // than r or ContactParameters::rim_reach (below), used only when neither of the above holds it
     Hit over_rim;
     for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q)
     {
@@ -235,7 +235,7 @@ namespace coupling
         const auto &inner = interior_edge_[f];
         const bool ok     = (!out_xi || inner[xi > 0 ? 1 : 3]) && (!out_eta || inner[eta > 0 ? 2 : 0]);
         // Past the master's outer edge: the kinematic contact of a flat or concave master keeps
-        // the face within r of that edge (the last fallback below). The mesh's outer edge is a
+        // the face within r (or rim_reach) of that edge (the last fallback below). The mesh's outer edge is a
         // polygon inside the platen's circle (a 50 mm platen with 16 rim vertices: 0.48 mm in at
         // the chords' middles), and the rim particles of a specimen as wide as its platen lay
         // over no face: unsupported, they failed at 28 % of the strength.

@@ -9,8 +9,8 @@
 using app::Matrix2;
 using app::Vector2;
 
-// A power law peak = k^a G^b in logarithms is linear: Broyden's method from a wrong Jacobian
-// guess must still find the root, (log k, log G) with UCS x 1.6 and BTS x 1.5.
+// A power law in two unknowns is linear in their logarithms: Broyden's method from a wrong
+// Jacobian guess must still find the root where UCS is x 1.6 and BTS x 1.5.
 TEST(JointSolver, FindsTheRootOfAPowerLawFromAWrongGuess)
 {
   const double t0 = std::log(1.6), t1 = std::log(1.5);

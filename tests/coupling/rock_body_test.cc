@@ -27,7 +27,7 @@ namespace
     p.rock.youngs_modulus        = 97.07e9;
     p.rock.poissons_ratio        = 0.28;
     p.rock.cohesion              = 32.99e6;
-    p.rock.friction_angle        = 63.68 * 3.14159265358979323846 / 180.0;
+    p.rock.friction_angle        = 63.68 * M_PI / 180.0;
     p.rock_case.strength_scatter = 10;
     p.rock_case.scatter_length   = scatter_length;
     return p;

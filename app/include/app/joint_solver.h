@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Broyden's method for two unknowns: the joint calibration of `cosim calibrate --simulate
-/// --with-bts` solves (log UCS miss, log BTS miss) = 0 for (log c scale, log G_I scale) with it,
-/// each evaluation being coupled runs. Kept apart from the runs so that it is tested on closed
+/// --with-bts` solves (log UCS miss, log BTS miss) = 0 for (log c scale, the shift of
+/// log tan(pi/4 + phi/2)) with it, each evaluation being coupled runs. Kept apart from the runs so that it is tested on closed
 /// forms.
 
 #include <array>
