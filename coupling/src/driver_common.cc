@@ -443,7 +443,7 @@ namespace coupling
     // Elements of two spacings take four to nine particles each: point loads on their nodes are
     // near their consistent loads (M1 UCS on a platen of the specimen's diameter, 2.5 mm: 280.2
     // MPa at one point, 279.5 at 2 x 2). Elements of one spacing take about one: the face dimples
-    // under each (248.9 / 254.4 / 270.5 / 274.6 MPa at 1 / 2 / 3 / 4 points), so finer elements
+    // under each (248.9 / 254.4 / 270.5 / 274.4 MPa at 1 / 2 / 3 / 4 points), so finer elements
     // need the patch sampled (2 dx / h)^2 times along each side, as far as 4 (16 points).
     const double dx = p.sph.spacing;
     const double h  = specimen_platen_parameters(p).element_size;
