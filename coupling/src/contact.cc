@@ -44,6 +44,48 @@ namespace coupling
     constexpr double edge_tolerance = 1e-9;
   } // namespace
 
+  void map_onto_rim_polygon(const ContactParameters &p, double &x, double &y)
+  {
+    const std::vector<double> &angle = p.rim_angles;
+    if (angle.size() < 3)
+      return;
+    const double dx = x - p.rim_centre[0], dy = y - p.rim_centre[1];
+    const double r  = std::hypot(dx, dy);
+    if (!(r > 0))
+      return;
+    const double theta = std::atan2(dy, dx);
+    // the sector [angle[k], angle[k + 1]) holding theta; the last one wraps through pi
+    const std::size_t k = static_cast<std::size_t>(std::upper_bound(angle.begin(), angle.end(), theta) - angle.begin());
+    const double lo = k == 0 ? angle.back() - 2 * M_PI : angle[k - 1];
+    const double hi = k == angle.size() ? angle.front() + 2 * M_PI : angle[k];
+    const double a = 0.5 * (hi - lo), middle = lo + a;
+    double u       = theta - middle;
+    u -= 2 * M_PI * std::round(u / (2 * M_PI));
+    const double phi = std::atan(std::tan(a) * u / a);
+    const double rho = r * std::cos(a) / std::cos(phi);
+    x                = p.rim_centre[0] + rho * std::cos(middle + phi);
+    y                = p.rim_centre[1] + rho * std::sin(middle + phi);
+  }
+
+  void map_contact_point(const ContactParameters &p, double &x, double &y)
+  {
+    const std::vector<double> &from = p.face_radius, &to = p.face_radius_mapped;
+    if (from.size() >= 2 && from.size() == to.size())
+    {
+      const double dx = x - p.rim_centre[0], dy = y - p.rim_centre[1];
+      const double r  = std::hypot(dx, dy);
+      if (r > 0 && r < from.back())
+      {
+        const std::size_t k = static_cast<std::size_t>(std::upper_bound(from.begin(), from.end(), r) - from.begin());
+        const double t      = (r - from[k - 1]) / (from[k] - from[k - 1]);
+        const double scale  = ((1 - t) * to[k - 1] + t * to[k]) / r;
+        x                   = p.rim_centre[0] + scale * dx;
+        y                   = p.rim_centre[1] + scale * dy;
+      }
+    }
+    map_onto_rim_polygon(p, x, y);
+  }
+
   double stable_contact_stiffness(double slave_mass, double master_mass, double dt)
   {
     const double m_eff =

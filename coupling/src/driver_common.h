@@ -147,9 +147,26 @@ namespace coupling
   /// inside its circle at the chords' middles, R (1 - cos(pi / n)) [m] (ContactParameters::rim_reach).
   double rim_sagitta(const fem::SteelBody &platen);
 
+  /// ContactParameters::rim_angles, rim_radius, rim_centre from a cylinder platen's contact face
+  /// (its rim vertices: the face's nodes on its largest radius about the nodes' centroid), set
+  /// only where the specimen of radius `specimen_radius` reaches past the polygon's chords
+  /// (a platen as wide as the specimen, within the sagitta); on a wider platen the rock's rim
+  /// lies inside the polygon and is left where it is. Leaves `cp` unchanged otherwise.
+  void set_rim_polygon(ContactParameters &cp, const fem::SteelBody &platen, double specimen_radius);
+
+  /// ContactParameters::face_radius / face_radius_mapped (and rim_centre, the end particles'
+  /// mean) from the loaded end particles (loaded_area > 0; reference positions x0, cell areas
+  /// volume / layer thickness, spacing dx): each cell's A_i - c_i spread evenly over the radii
+  /// r_i +- dx / 2 and summed outwards to E(r), then r' = sqrt(r^2 + E(r) / pi), so that the
+  /// circle of r' holds the discrete area inside r. Both end faces are the same: their
+  /// particles are tabulated together (each face half of the sums).
+  void set_face_remap(ContactParameters &cp, const std::vector<sph::Vector<3>> &x0,
+                      const std::vector<double> &loaded_area, const std::vector<double> &cell_area,
+                      double dx);
+
   /// Platens/Contact patch points as the kinematic contact on an elastic platen uses it: the
-  /// case's value, or for 0 ceil((2 dx / h)^2) for elements of size h and particle spacing dx,
-  /// 1 to 4 (one point for the default elements of two spacings).
+  /// case's value, or for 0: 4 for the cylinder platens of UCS and CTCS; for BTS ceil((2 dx /
+  /// h)^2) for elements of size h and particle spacing dx, 1 to 4.
   unsigned int contact_patch_points(const CaseParameters &p);
   /// The FEM body (platen or cutter) of Platens/*: model, steel, and the element size, which
   /// is Platens/Element size where set, else `default_element_size` [m].

@@ -80,7 +80,8 @@ namespace coupling
       {
         const double a = ((i + 0.5) / points - 0.5) * 2.0 * prm_.radius;
         const double b = ((j + 0.5) / points - 0.5) * 2.0 * prm_.radius;
-        const double q[3] = {x[0] + a * t1[0] + b * t2[0], x[1] + a * t1[1] + b * t2[1], x[2] + a * t1[2] + b * t2[2]};
+        double q[3] = {x[0] + a * t1[0] + b * t2[0], x[1] + a * t1[1] + b * t2[1], x[2] + a * t1[2] + b * t2[2]};
+        map_contact_point(prm_, q[0], q[1]);
         // a sample point past every face (beyond the platen's rim) loads the hit's face
         const Hit h       = find_face(q, s);
         const Hit &on     = (h.face >= 0 && c.n_nodes + 4 <= max_patch_nodes) ? h : centre;
@@ -123,7 +124,12 @@ namespace coupling
           fr = FrictionState{};
           continue;
         }
-        Hit hit = find_face(pt.position + 3 * i, s);
+        // on a deformable cylinder platen as wide as the specimen, the point on the rim polygon
+        // the particle's place on the circle maps to (ContactParameters::rim_angles)
+        double at[3] = {pt.position[3 * i], pt.position[3 * i + 1], pt.position[3 * i + 2]};
+        if (deformable)
+          map_contact_point(prm_, at[0], at[1]);
+        Hit hit = find_face(at, s);
         if (hit.face < 0)
         {
           fr = FrictionState{};

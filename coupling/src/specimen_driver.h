@@ -106,6 +106,7 @@ namespace coupling
     mutable StateRows            state_rows_; // distributed: the rows of the last save_state
     OwnedParticles owned_;
     std::vector<sph::Vector<3>> x0_global_; // reference positions of the whole body [m]
+    std::vector<double> cell_area_global_;   // volume / layer thickness of every particle [m^2]
     double normal_top_ = 0, normal_bottom_ = 0; // contact normal forces, all ranks [N]
     std::size_t n_global_pairs_ = 0;            // SPH pairs of the whole body
     // distributed: this rank's share of the last step's boundary-load work, summed over the

@@ -102,6 +102,26 @@ namespace coupling
     /// particle keeps that edge's face [m]; at least r. A platen's rim polygon lies inside its
     /// circle by up to R (1 - cos(pi / n)) for n rim vertices, which the driver passes here.
     double rim_reach = 0.0;
+    /// Kinematic on a deformable cylinder platen as wide as the specimen: the platen's circle's
+    /// centre and its mesh's rim polygon (the rim vertices' angles, ascending in
+    /// [-pi, pi)). The contact points (a particle's centre and its patch's sample points) are
+    /// mapped from the circle onto the polygon, sector by sector, with a uniform area ratio
+    /// (map_onto_rim_polygon), before the face is looked for. Without it a specimen as wide as
+    /// its platen loads the polygon's rim nodes with what lies between the chords and the
+    /// circle (a 50 mm platen with 16 rim vertices: 2.6 % of the area, the rim nodes 16 % above
+    /// their consistent loads) and the steel face dishes by a micrometre. Empty: no map.
+    std::vector<double> rim_angles;
+    double rim_centre[2] = {0, 0}; ///< the circle's centre x, y [m]
+    /// Kinematic on a deformable face of a loaded end (sph::Body::add_loaded_face): the radius r
+    /// about rim_centre of a contact point and the radius r' it is moved to, tabulated
+    /// (ascending; linear between, the identity beyond). A uniform stress pushes each end
+    /// particle with its discrete loaded area A_i, which near the specimen's side is not its
+    /// cell's (2.5 mm lattice, 50 mm cylinder: 1.2 to 1.25 times the cell two rows in, 0.66
+    /// times it in the outer row), so the steel under a uniform stress saw a ring 25 % over and
+    /// the rim 34 % under its pressure and bent a micrometre. With pi r'^2 = the discrete area
+    /// inside r the forces land where a uniform pressure would put them; the forces themselves
+    /// are not changed (momentum stays exact). Empty: no remap.
+    std::vector<double> face_radius, face_radius_mapped;
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
@@ -115,6 +135,20 @@ namespace coupling
     /// a loaded, warped platen face the projections leave the same gap.
     bool convex_master = false;
   };
+
+  /// The point (x, y) of the platen's disc (about `p.rim_centre`), mapped onto the
+  /// rim polygon of `p.rim_angles` (ContactParameters): in the sector between two rim vertices
+  /// (half-angle a, its middle at angle m) the point at radius r and angle m + u goes to angle
+  /// m + phi, tan(phi) = tan(a) u / a, and radius r cos(a) / cos(phi). The circle's arc lands on
+  /// the chord, the vertices stay, and every area shrinks by the same sin(2a) / (2a) (the
+  /// polygon's area over the circle's), so a uniform stress on the disc loads the polygon
+  /// uniformly. Points beyond the circle are mapped by the same rule. No-op without rim_angles.
+  void map_onto_rim_polygon(const ContactParameters &p, double &x, double &y);
+
+  /// Where a contact point (x, y) of a particle's patch loads a deformable face: moved radially
+  /// by ContactParameters::face_radius -> face_radius_mapped, then onto the rim polygon
+  /// (map_onto_rim_polygon). No-op where neither is set.
+  void map_contact_point(const ContactParameters &p, double &x, double &y);
 
   /// Largest stable penalty stiffness for a particle of mass m_s against a node of mass m_m
   /// (m_m = 0: rigid) under central differences with step dt, the spring alone:
