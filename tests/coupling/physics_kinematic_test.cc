@@ -278,8 +278,7 @@ TEST(CoupledKinematic, BondedElasticPlatensGiveTheFeReferencePeakAndEndFace)
   // (+0.6 %; 270.64 before the contact points were mapped, ContactParameters::face_radius)
   EXPECT_NEAR(coupled / r.peak_stress, 1.0, 0.02);
   // 5 % RMS over the face, as with rigid bonded ends (the test above); measured 3.0 % (2.3 %
-  // before the contact points were mapped: the bonded rim's particles, moved by the map up to
-  // a third of a spacing along the face, are tied to the face's motion there)
+  // before the contact points were mapped)
   EXPECT_LT(rms, 0.05);
 }
 
