@@ -149,6 +149,15 @@ run() {
     platens-rollers-mesh) study platens-rollers-mesh $ucs --set "Platens/Model=elastic" \
                     --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
+    # the same on the body-fitted specimen (its side round: no staircase against the platen's rim)
+    platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
@@ -162,7 +171,8 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      heterogeneous-ucs-calibrated-friction
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
      heterogeneous-bts-fracture-energy heterogeneous-ucs-elastic-platens heterogeneous-ucs-elastic-bonded
-     heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh platens-rollers-overhang)
+     heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh platens-rollers-overhang
+     platens-rollers-spacing-fitted platens-rollers-mesh-fitted)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
