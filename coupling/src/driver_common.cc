@@ -519,10 +519,11 @@ namespace coupling
     if (p.platens.contact_patch_points > 0)
       return static_cast<unsigned int>(p.platens.contact_patch_points);
     // A point load on a face takes its nodes' shares at one point: where the lattice and the
-    // platen mesh do not line up, a uniform stress gives the nodes of elements of two spacings
-    // 4 to 33 % more or less than their consistent loads (the face bumpy by 0.5 um under M1 at
-    // half its strength, 2.5 mm), and a softening rock's end layer fails early (M1 on a platen
-    // of its own diameter, 2.5 mm, body-fitted: 272.6 MPa at one point, 282.3 at 4 x 4). So the
+    // platen mesh do not line up, a uniform stress loads the nodes of elements of two spacings
+    // unevenly (M1 at half its strength, 2.5 mm: neighbouring rings of the face's nodes up to
+    // 0.7 um apart at one point, a smooth profile at 4 x 4), and a softening rock's end layer
+    // fails early (M1 on a platen of its own diameter, 2.5 mm, body-fitted: 272.6 MPa at one
+    // point, 282.3 at 4 x 4). So the
     // cylinder platens take 4 x 4 points at any element size. BTS (a line contact): elements of
     // one spacing take about one particle and dimple under each, so they take (2 dx / h)^2
     // points along each side, as far as 4.

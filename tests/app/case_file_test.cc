@@ -150,6 +150,22 @@ TEST(CaseFile, ScatterLengthIsKeptAndWarnedBelowTheSpacing)
   EXPECT_NE(d.warnings[0].find("Rock/Scatter length"), std::string::npos) << d.warnings[0];
 }
 
+TEST(CaseFile, ElasticPlatensAsWideAsALatticeSpecimenAreWarned)
+{
+  // the lattice's staircase side on an elastic platen's rim loads the steel unevenly: say so and
+  // name the body-fitted specimen; wider platens, the body-fitted specimen and rigid platens not
+  const std::vector<std::string> elastic{"Platens/Model=elastic", "Platens/Diameter=0.05"};
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), elastic);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("body-fitted"), std::string::npos) << c.warnings[0];
+  auto fitted = elastic;
+  fitted.push_back("SPH/Particle arrangement=body-fitted");
+  EXPECT_TRUE(app::read_case_file(source("cases/ucs/ucs.prm"), fitted).warnings.empty());
+  EXPECT_TRUE(app::read_case_file(source("cases/ucs/ucs.prm"), {"Platens/Model=elastic", "Platens/Diameter=0.06"})
+                .warnings.empty());
+  EXPECT_TRUE(app::read_case_file(source("cases/ucs/ucs.prm"), {"Platens/Diameter=0.05"}).warnings.empty());
+}
+
 TEST(CaseFile, ErrorsAreInputErrors)
 {
   EXPECT_THROW(app::read_case_file(source("cases/ucs/ucs.prm"), {"SPH/FORM=2"}), coupling::InputError);
