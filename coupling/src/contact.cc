@@ -189,6 +189,96 @@ namespace coupling
     }
   }
 
+  bool PenaltyContact::closest_point(const std::array<double, 3> &p, const ContactSurface &s, const int f,
+                                     double &xi, double &eta) const
+  {
+    const auto &fn = s.faces[f];
+    const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
+    // Newton iterations for the closest point x(xi, eta) of the bilinear face.
+    V3 xs{}, dxi{}, deta{};
+    for (int it = 0; it < 8; ++it)
+    {
+      const auto N = shape(xi, eta);
+      for (int d = 0; d < 3; ++d)
+      {
+        xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
+        dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
+        deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
+      }
+      const V3 r     = sub(p, xs);
+      const double a = dot(dxi, dxi), b = dot(dxi, deta), e = dot(deta, deta);
+      const double g1 = dot(dxi, r), g2 = dot(deta, r);
+      const double det = a * e - b * b;
+      if (!(det > 0))
+        return false;
+      const double dx1 = (e * g1 - b * g2) / det, dx2 = (a * g2 - b * g1) / det;
+      xi += dx1;
+      eta += dx2;
+      if (std::abs(dx1) + std::abs(dx2) < 1e-13)
+        return true;
+    }
+    return false;
+  }
+
+  bool PenaltyContact::face_point(const ContactSurface &s, const int f, const double xi, const double eta,
+                                  std::array<double, 3> &xs, std::array<double, 3> &n) const
+  {
+    const auto &fn = s.faces[f];
+    const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
+    const auto N = shape(xi, eta);
+    V3 dxi, deta;
+    for (int d = 0; d < 3; ++d)
+    {
+      xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
+      dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
+      deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
+    }
+    n               = cross(dxi, deta);
+    const double nn = std::sqrt(dot(n, n));
+    if (!(nn > 0))
+      return false;
+    for (double &v : n)
+      v /= nn;
+    return true;
+  }
+
+  PenaltyContact::Hit PenaltyContact::inside_face(const double *x, const ContactSurface &s, const int f) const
+  {
+    // only a flat master (no face of its tiling overlaps another's projection: one face holds a
+    // point's projection), inside the face by a margin: there find_face's search ends on this
+    // face with these very numbers
+    Hit hit;
+    if (!prm_.flat_master || f < 0)
+      return hit;
+    const V3 p{x[0], x[1], x[2]};
+    const double slack = 0.02 * prm_.radius; // find_face's test of the face's inflated box
+    const auto &b      = face_box_[f];
+    if (p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack || p[0] > b[3] + slack ||
+        p[1] > b[4] + slack || p[2] > b[5] + slack)
+      return hit;
+    double xi = 0, eta = 0;
+    if (!closest_point(p, s, f, xi, eta))
+      return hit;
+    // Two faces that meet at a crease hold the projections of the points above it (r over the
+    // face) within about r times the angle between them of the crease: under load a platen's
+    // faces tilt by about 1e-4 against each other, so 1e-4 of the face; 1e-2 keeps far off.
+    const double margin = 1e-2;
+    if (!(std::abs(xi) < 1 - margin && std::abs(eta) < 1 - margin))
+      return hit;
+    V3 xs, n;
+    if (!face_point(s, f, xi, eta, xs, n))
+      return hit;
+    const double distance = dot(sub(p, xs), n);
+    const double reach    = prm_.method == ContactMethod::kinematic ? 2.0 * prm_.radius : prm_.radius;
+    if (distance < -2.0 * prm_.radius || distance > reach)
+      return hit;
+    hit.face   = f;
+    hit.gap    = distance - prm_.radius;
+    hit.weight = shape(xi, eta);
+    hit.normal = n;
+    return hit;
+  }
+
   PenaltyContact::Hit PenaltyContact::find_face(const double *x, const ContactSurface &s) const
   {
     Hit best;
@@ -228,32 +318,8 @@ namespace coupling
             p[0] > b[3] + slack || p[1] > b[4] + slack || p[2] > b[5] + slack)
           continue;
       }
-      const auto &fn = s.faces[f];
-      const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
-      // Newton iterations for the closest point x(xi, eta) of the bilinear face.
       double xi = 0, eta = 0;
-      V3 xs{}, dxi{}, deta{};
-      for (int it = 0; it < 8; ++it)
-      {
-        const auto N = shape(xi, eta);
-        for (int d = 0; d < 3; ++d)
-        {
-          xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
-          dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
-          deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
-        }
-        const V3 r     = sub(p, xs);
-        const double a = dot(dxi, dxi), b = dot(dxi, deta), e = dot(deta, deta);
-        const double g1 = dot(dxi, r), g2 = dot(deta, r);
-        const double det = a * e - b * b;
-        if (!(det > 0))
-          break;
-        const double dx1 = (e * g1 - b * g2) / det, dx2 = (a * g2 - b * g1) / det;
-        xi += dx1;
-        eta += dx2;
-        if (std::abs(dx1) + std::abs(dx2) < 1e-13)
-          break;
-      }
+      const bool converged = closest_point(p, s, f, xi, eta);
       // outside the face: skipped, except on a convex master across an edge shared with another
       // face (an apex or ridge line), where the particle takes the face's plane clamped to that
       // edge (below): in the wedge of space between two faces' normals at a convex edge a particle
@@ -270,6 +336,14 @@ namespace coupling
       // edge, clamped to that edge and within r of it along the face, as a fallback taken only
       // when no face contains the particle's projection (where one does, nothing changes).
       const bool out_xi = std::abs(xi) > 1 + edge_tolerance, out_eta = std::abs(eta) > 1 + edge_tolerance;
+      // An iteration that stopped unconverged inside the face has not found the particle's
+      // projection there: a point far past a face (a patch sample 5 mm from its face, seen from
+      // the face's far corner) can stop inside after 8 steps, and it then took the face's
+      // nodes 11 mm away, its gap as if over the face, against the face that does hold it.
+      // Such a face holds no projection (a flat or concave master; a convex one treats a point
+      // that is not the closest below).
+      if (!converged && !(out_xi || out_eta) && !prm_.convex_master)
+        continue;
       bool past_rim     = false;
       if (out_xi || out_eta)
       {
@@ -285,21 +359,12 @@ namespace coupling
           continue;
         past_rim = !ok;
       }
-      xi           = std::clamp(xi, -1.0, 1.0);
-      eta          = std::clamp(eta, -1.0, 1.0);
-      const auto N = shape(xi, eta);
-      for (int d = 0; d < 3; ++d)
-      {
-        xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
-        dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
-        deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
-      }
-      V3 n            = cross(dxi, deta);
-      const double nn = std::sqrt(dot(n, n));
-      if (!(nn > 0))
+      xi  = std::clamp(xi, -1.0, 1.0);
+      eta = std::clamp(eta, -1.0, 1.0);
+      V3 xs, n;
+      if (!face_point(s, f, xi, eta, xs, n))
         continue;
-      for (double &v : n)
-        v /= nn;
+      const auto N          = shape(xi, eta);
       const V3 r_clamped    = sub(p, xs);
       const double distance = dot(r_clamped, n);
       if (out_xi || out_eta)

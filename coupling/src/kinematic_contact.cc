@@ -83,7 +83,9 @@ namespace coupling
         double q[3] = {x[0] + a * t1[0] + b * t2[0], x[1] + a * t1[1] + b * t2[1], x[2] + a * t1[2] + b * t2[2]};
         map_contact_point(prm_, q[0], q[1]);
         // a sample point past every face (beyond the platen's rim) loads the hit's face
-        const Hit h       = find_face(q, s);
+        Hit h = inside_face(q, s, centre.face);
+        if (h.face < 0)
+          h = find_face(q, s);
         const Hit &on     = (h.face >= 0 && c.n_nodes + 4 <= max_patch_nodes) ? h : centre;
         for (int k = 0; k < 4; ++k)
           add(s.faces[on.face][k], w * on.weight[k]);

@@ -420,6 +420,7 @@ namespace coupling
     cp.bonded           = prm_.platens.bonded;
     cp.tolerance        = prm_.platens.contact_tolerance;
     cp.patch_points     = contact_patch_points(prm_);
+    cp.flat_master      = !bts_; // the cylinder platens' flat faces (the BTS jaws may be concave)
     if (!bts_) // the cylinder platens' rim polygons: inside their circle by the chords' sagitta
       cp.rim_reach = std::max(rim_sagitta(*top_), rim_sagitta(*bottom_));
     // Elastic cylinder platens: the particles' forces land on the steel where a uniform stress

@@ -134,6 +134,9 @@ namespace coupling
     /// it along the face) only when no face contains the particle's projection: over a ridge of
     /// a loaded, warped platen face the projections leave the same gap.
     bool convex_master = false;
+    /// The master is flat (a UCS/CTCS platen): a point's projection lies inside at most one face,
+    /// so a patch's sample found inside its particle's face needs no search (inside_face).
+    bool flat_master = false;
   };
 
   /// The point (x, y) of the platen's disc (about `p.rim_centre`), mapped onto the
@@ -236,6 +239,19 @@ namespace coupling
       double dissipated   = 0;        ///< friction work of this apply() [J]
     };
     Hit find_face(const double *x, const ContactSurface &surface) const;
+    /// find_face's answer where it surely is face `f`: on a flat master (flat_master), the point's projection
+    /// inside f by a margin of 1e-2 of its parametric size and within find_face's reach of its
+    /// plane (the same closest-point iteration, so the same numbers). Otherwise no face (then
+    /// ask find_face). A particle's patch samples mostly lie on its own face: this spares them
+    /// the search.
+    Hit inside_face(const double *x, const ContactSurface &surface, int f) const;
+    /// Newton iterations from (xi, eta) for the closest point of face f to p (parametric);
+    /// false where they did not converge (8 at most) or the face is degenerate there.
+    bool closest_point(const std::array<double, 3> &p, const ContactSurface &surface, int f, double &xi,
+                       double &eta) const;
+    /// Face f's point x(xi, eta) and unit normal there; false for a degenerate face.
+    bool face_point(const ContactSurface &surface, int f, double xi, double eta, std::array<double, 3> &xs,
+                    std::array<double, 3> &n) const;
     /// Whether find_face surely finds no face for the particle at `x` (a test of a few
     /// comparisons, inline: most particles of a specimen are far from either platen, and the
     /// call alone cost them more than their forces).
