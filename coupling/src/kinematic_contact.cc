@@ -7,7 +7,8 @@
 ///   f_n = -m_eff g* / dt^2,   1 / m_eff = 1 / m_particle + sum_a w_a^2 / m_a,share,
 /// the face's node masses shared among the particles that touch them in proportion to their
 /// shape-function weights w_a (on a deformable face, with ContactParameters::patch_points > 1,
-/// the mean weights over the particle's patch, and the gap the patch's mean: share_among_nodes) (m_a,share = m_a w_a / sum over the node's contacts of w), so that
+/// the mean weights over the particle's patch, and the gap the patch's mean: share_among_nodes;
+/// on an elastic cylinder platen the patch's points first moved by map_contact_point) (m_a,share = m_a w_a / sum over the node's contacts of w), so that
 /// several particles on one node do not each move it as if alone; on a deformable face the
 /// contacts are then corrected together (projected Jacobi sweeps, see step 3) until each ends
 /// the step on the moved face. A rigid master has no mass: m_eff is the particle's, and one pass
@@ -126,8 +127,8 @@ namespace coupling
           fr = FrictionState{};
           continue;
         }
-        // on a deformable cylinder platen as wide as the specimen, the point on the rim polygon
-        // the particle's place on the circle maps to (ContactParameters::rim_angles)
+        // on a deformable cylinder platen, the point where a uniform stress would put the
+        // particle's load (map_contact_point: the ends' discrete areas, the rim polygon)
         double at[3] = {pt.position[3 * i], pt.position[3 * i + 1], pt.position[3 * i + 2]};
         if (deformable)
           map_contact_point(prm_, at[0], at[1]);
