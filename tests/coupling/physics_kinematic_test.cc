@@ -295,13 +295,13 @@ TEST(CoupledKinematic, ElasticPlatensOfTheSpecimensDiameterOnRollersGiveTheUniax
                     "Output/Snapshots=80"});
   EndFaceObserver face(p.sph.spacing, 0.5 * p.diameter);
   const Summary s = run_case(p, face);
-  // 3 %: the 5 mm lattice's staircase side on a face of 8 elements across (an octagon) loads
-  // the end layer's outer row unevenly; measured 282.4 MPa, +0.09 % (275.85, -2.2 %, before
-  // the contact points were mapped where a uniform stress puts its load and before an
-  // unconverged closest-point iteration stopped counting as a projection).
-  // The mesh's rim is a polygon inside the platen's circle: before rim particles past it kept
-  // their contact the run gave 215.6 MPa (2.5 mm: 216.7), its rim failing at 108 MPa
-  EXPECT_NEAR(s.peak_stress / closed_form_ucs(), 1.0, 0.03);
+  // 1 %: the UCS target against the closed form; measured 282.4 MPa, +0.09 %. Before an
+  // unconverged closest-point iteration stopped counting as a projection (a patch sample then
+  // took a face's nodes 11 mm away): 277.8, -1.6 %; before the contact points were mapped where
+  // a uniform stress puts its load: 275.85, -2.2 %. The mesh's rim is a polygon inside the
+  // platen's circle: before rim particles past it kept their contact the run gave 215.6 MPa
+  // (2.5 mm: 216.7), its rim failing at 108 MPa
+  EXPECT_NEAR(s.peak_stress / closed_form_ucs(), 1.0, 0.01);
   // nothing fails far below the strength (measured: the first failure at 0.97 of it; with the
   // unsupported rim at 0.38). 0.8: the end layer's unevenness, with margin
   EXPECT_GT(extra(s, "failure_onset_stress_MPa") * 1e6, 0.8 * closed_form_ucs());
