@@ -161,7 +161,7 @@ TEST(ContactFriction, SlidesWhenTangentialForceReachesMuN)
     }
   }
   ASSERT_GT(T_slip, 0.0) << "the particle never slid";
-  // 2 %: the tolerance; the tangential oscillation (0.4 % of mu N) and the normal
+  // 2 %: the target's tolerance; the tangential oscillation (0.4 % of mu N) and the normal
   // force's settling are the error sources
   EXPECT_NEAR(T_slip, mu * N, 0.02 * mu * N);
 }

@@ -115,7 +115,7 @@ namespace
 
 TEST(CoupledFriction, BlockStartsToSlideAtMuNAndSlidesAgainstMuN)
 {
-  // one coefficient (mu_s = mu_d): the check, on a rigid and on an elastic steel platen
+  // one coefficient (mu_s = mu_d): the sliding check, on a rigid and on an elastic steel platen
   const double mu = 0.5;
   for (const bool rigid : {true, false})
   {
@@ -126,7 +126,7 @@ TEST(CoupledFriction, BlockStartsToSlideAtMuNAndSlidesAgainstMuN)
               << r.stuck_travel << " m\n";
     ASSERT_GT(r.onset_load, 0.0) << "the block never slid";
     EXPECT_EQ(r.n_contact, 64u) << "the whole base must be in contact";
-    // 2 %: the tolerance. The load grows by 5e-5 mu N per step, far finer; the stick
+    // 2 %: the target's tolerance. The load grows by 5e-5 mu N per step, far finer; the stick
     // springs carry a share of T that the last particles to slip must take over (measured: the
     // onset at 0.995 mu N, rigid and elastic)
     EXPECT_NEAR(r.onset_load / (mu * r.normal_load), 1.0, 0.02);
@@ -151,7 +151,7 @@ TEST(CoupledFriction, StaticAndDynamicCoefficients)
             << r.onset_load / (mu_s * r.normal_load) << ", sliding F/(mu_d N) "
             << r.sliding_force / (mu_d * r.normal_load) << "\n";
   ASSERT_GT(r.onset_load, 0.0) << "the block never slid";
-  // 2 %: the tolerance for the sliding force (measured 0.99996)
+  // 2 %: the target's tolerance for the sliding force (measured 0.99996)
   EXPECT_NEAR(r.sliding_force / (mu_d * r.normal_load), 1.0, 0.02);
   // the static coefficient holds the block past mu_d N (by 5 % measured: 2 % is the margin)
   EXPECT_GT(r.onset_load, 1.02 * mu_d * r.normal_load);

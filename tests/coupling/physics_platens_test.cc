@@ -216,7 +216,7 @@ TEST(CoupledUcs, ElasticPlatensGiveTheSeriesStiffnessAndForcesCancelEveryStep)
             << platen_c << " m/N; without the contact layers " << without_layer / 1e9
             << " GPa), gauge modulus " << s.youngs_modulus / 1e9 << " GPa, exchange imbalance "
             << s.max_exchange_imbalance << ", steps " << s.n_steps << "\n";
-  // 3 %: the tolerance against the series stiffness (measured +2.7 %: 63.16 against
+  // 3 %: the target's tolerance against the series stiffness (measured +2.7 %: 63.16 against
   // 61.51 GPa; the rest is the contact layer, whose springs do not all carry the same load).
   // Before the contact fix of ContactRidge (particles over a platen mesh vertex that sank less
   // than its neighbours lost their contact) it was +4.2 %, and the gauges read 100.89 GPa.

@@ -106,7 +106,7 @@ TEST(CoupledImpact, FreeBodiesKeepMomentumAndEnergy)
   // in its null space) sum to zero, the contact impulse f dt is the same on both sides with the
   // sub-cycling, so only round-off of ~1e3 steps remains
   EXPECT_LT(max_momentum_error, 1e-10);
-  // 2 % (the tolerance): kinetic + internal + dissipated (artificial viscosity, hourglass)
+  // 2 % (the target's tolerance): kinetic + internal + dissipated (artificial viscosity, hourglass)
   // + FEM kinetic + strain + penalty energy, kinetic centred on the step. Measured 1.9 % at the
   // worst instant and 1.6 % after separation: the explicit penalty gains energy at the onset of
   // contact (which falls inside a step), the known error of explicit penalty impact; a stiffer

@@ -51,7 +51,7 @@ TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
   Keep rows;
   const Summary s = run_case(elastic_ucs(), rows);
   ASSERT_GT(rows.rows.size(), 50u);
-  // 1 %: the tolerance for rigid platens; the secant is read over the middle half of the
+  // 1 %: the target's tolerance for rigid platens; the secant is read over the middle half of the
   // specimen (gauges), where SPH's corrected gradients are exact for the uniform field
   EXPECT_NEAR(s.youngs_modulus / 97.07e9, 1.0, 0.01);
   // 3 %: the SPH issue's tolerance for nu; the ring at mid-height sits half a spacing inside the

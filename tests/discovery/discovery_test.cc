@@ -7,7 +7,7 @@
 // (heldout_gain) cannot reach five for the effects that act on curve peaks only (rate, end
 // friction, size): the strength rows and curve points that both models fit to the noise dilute
 // it to 1.6-6.3.
-// Tolerance reasons: 10 % and five-fold are the acceptance numbers; the ranges keep each
+// Tolerance reasons: 10 % and five-fold are the acceptance numbers; the ranges keep each
 // effect several noise levels above the 2 % strength scatter and the 0.2 % curve noise, so that
 // the effect is measurable at all.
 // Seeds: 1-8 for every test, fixed in advance (COSIM_DISCOVERY_SEEDS=... runs others locally;
