@@ -138,7 +138,7 @@ namespace
                                                      benchmark::Counter::kIsIterationInvariantRate);
   }
 
-  /// The configuration of the issue-8 target: FORM 8 (TL + correction), Mohr-Coulomb with
+  /// The configuration of the speed target: FORM 8 (TL + correction), Mohr-Coulomb with
   /// softening, Monaghan AV (1, 1), hourglass control; ends constrained, the top moving at
   /// 0.5 m/s so that particles yield within the run.
   template <int dim>
@@ -196,7 +196,7 @@ BENCHMARK_TEMPLATE(bm_grad_w, 2)->Arg(0)->Arg(1);
 BENCHMARK_TEMPLATE(bm_grad_w, 3)->Arg(0)->Arg(1);
 BENCHMARK_TEMPLATE(bm_find_pairs, 2)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(bm_find_pairs, 3)->Arg(100000)->Unit(benchmark::kMillisecond);
-// one step at 100,000 particles, 1 and 2 threads (the issue-8 target configuration)
+// one step at 100,000 particles, 1 and 2 threads (the speed target's configuration)
 BENCHMARK_TEMPLATE(bm_step, 2)
   ->ArgsProduct({{100000}, {1, 2}})
   ->UseRealTime()

@@ -163,7 +163,7 @@ TEST(CoupledFriction, KinematicBlockStartsToSlideAtMuNAndStaysStable)
 {
   // the same block on the kinematic interface (the specimen tests' default): Coulomb stick / slip
   // through the tangential constraint, no stick springs, on a rigid and an elastic platen; the run
-  // lasts 15,000-16,500 steps (the issue asks for 10^4 stable ones)
+  // lasts 15,000-16,500 steps (the target: 10^4 stable ones)
   const double mu = 0.5;
   for (const bool rigid : {true, false})
   {
