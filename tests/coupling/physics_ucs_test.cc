@@ -20,7 +20,7 @@ namespace
     p.rock.model            = sph::RockModel::elastic;
     p.rock.youngs_modulus   = 97.07e9; // group M1, Table 3
     p.rock.poissons_ratio   = 0.28;
-    p.sph.spacing           = 2.5e-3; // D/20, the resolution the SPH issue asks E and nu at
+    p.sph.spacing           = 2.5e-3; // D/20, the resolution E and nu are checked at
     p.loading.end_strain    = 1e-3;
     p.output.n_history_rows = 200;
     return p;
@@ -54,7 +54,7 @@ TEST(CoupledUcs, RigidPlatensGiveTheRockModulusAndPoissonsRatio)
   // 1 %: the target's tolerance for rigid platens; the secant is read over the middle half of the
   // specimen (gauges), where SPH's corrected gradients are exact for the uniform field
   EXPECT_NEAR(s.youngs_modulus / 97.07e9, 1.0, 0.01);
-  // 3 %: the SPH issue's tolerance for nu; the ring at mid-height sits half a spacing inside the
+  // 3 %: the tolerance for nu; the ring at mid-height sits half a spacing inside the
   // true surface, which the lattice's reference radius accounts for
   EXPECT_NEAR(s.poissons_ratio / 0.28, 1.0, 0.03);
   // the platen-read modulus: the default (kinematic) interface has no compliance of its own;
