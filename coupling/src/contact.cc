@@ -39,6 +39,19 @@ namespace coupling
               0.25 * (1 - xi) * (1 + eta)};
     }
 
+    /// The bilinear face through p0..p3 at (xi, eta): its point xs and tangents dxi, deta.
+    inline void bilinear_frame(const V3 &p0, const V3 &p1, const V3 &p2, const V3 &p3, double xi, double eta,
+                               V3 &xs, V3 &dxi, V3 &deta)
+    {
+      const auto N = shape(xi, eta);
+      for (int d = 0; d < 3; ++d)
+      {
+        xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
+        dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
+        deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
+      }
+    }
+
     /// How far outside the reference square a projection may fall and still count: particles on a
     /// shared edge must find one of the two faces despite round-off.
     constexpr double edge_tolerance = 1e-9;
@@ -49,11 +62,10 @@ namespace coupling
     const std::vector<double> &angle = p.rim_angles;
     if (angle.size() < 3)
       return;
-    const double dx = x - p.rim_centre[0], dy = y - p.rim_centre[1];
-    const double r  = std::hypot(dx, dy);
+    const double r = std::hypot(x, y);
     if (!(r > 0))
       return;
-    const double theta = std::atan2(dy, dx);
+    const double theta = std::atan2(y, x);
     // the sector [angle[k], angle[k + 1]) holding theta; the last one wraps through pi
     const std::size_t k = static_cast<std::size_t>(std::upper_bound(angle.begin(), angle.end(), theta) - angle.begin());
     const double lo = k == 0 ? angle.back() - 2 * M_PI : angle[k - 1];
@@ -63,25 +75,22 @@ namespace coupling
     u -= 2 * M_PI * std::round(u / (2 * M_PI));
     const double phi = std::atan(std::tan(a) * u / a);
     const double rho = r * std::cos(a) / std::cos(phi);
-    x                = p.rim_centre[0] + rho * std::cos(middle + phi);
-    y                = p.rim_centre[1] + rho * std::sin(middle + phi);
+    x                = rho * std::cos(middle + phi);
+    y                = rho * std::sin(middle + phi);
   }
 
   void map_contact_point(const ContactParameters &p, double &x, double &y)
   {
-    const std::vector<double> &from = p.face_radius, &to = p.face_radius_mapped;
-    if (from.size() >= 2 && from.size() == to.size())
+    const std::vector<double> &to = p.face_radius_mapped;
+    const double r                = std::hypot(x, y);
+    const double at               = p.face_remap_step > 0 ? r / p.face_remap_step : 0.0;
+    if (to.size() >= 2 && r > 0 && at < to.size() - 1)
     {
-      const double dx = x - p.rim_centre[0], dy = y - p.rim_centre[1];
-      const double r  = std::hypot(dx, dy);
-      if (r > 0 && r < from.back())
-      {
-        const std::size_t k = static_cast<std::size_t>(std::upper_bound(from.begin(), from.end(), r) - from.begin());
-        const double t      = (r - from[k - 1]) / (from[k] - from[k - 1]);
-        const double scale  = ((1 - t) * to[k - 1] + t * to[k]) / r;
-        x                   = p.rim_centre[0] + scale * dx;
-        y                   = p.rim_centre[1] + scale * dy;
-      }
+      const std::size_t k = static_cast<std::size_t>(at);
+      const double t      = at - k;
+      const double scale  = ((1 - t) * to[k] + t * to[k + 1]) / r;
+      x *= scale;
+      y *= scale;
     }
     map_onto_rim_polygon(p, x, y);
   }
@@ -198,13 +207,7 @@ namespace coupling
     V3 xs{}, dxi{}, deta{};
     for (int it = 0; it < 8; ++it)
     {
-      const auto N = shape(xi, eta);
-      for (int d = 0; d < 3; ++d)
-      {
-        xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
-        dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
-        deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
-      }
+      bilinear_frame(p0, p1, p2, p3, xi, eta, xs, dxi, deta);
       const V3 r     = sub(p, xs);
       const double a = dot(dxi, dxi), b = dot(dxi, deta), e = dot(deta, deta);
       const double g1 = dot(dxi, r), g2 = dot(deta, r);
@@ -225,14 +228,8 @@ namespace coupling
   {
     const auto &fn = s.faces[f];
     const V3 p0 = node(s, fn[0]), p1 = node(s, fn[1]), p2 = node(s, fn[2]), p3 = node(s, fn[3]);
-    const auto N = shape(xi, eta);
     V3 dxi, deta;
-    for (int d = 0; d < 3; ++d)
-    {
-      xs[d]   = N[0] * p0[d] + N[1] * p1[d] + N[2] * p2[d] + N[3] * p3[d];
-      dxi[d]  = 0.25 * ((1 - eta) * (p1[d] - p0[d]) + (1 + eta) * (p2[d] - p3[d]));
-      deta[d] = 0.25 * ((1 - xi) * (p3[d] - p0[d]) + (1 + xi) * (p2[d] - p1[d]));
-    }
+    bilinear_frame(p0, p1, p2, p3, xi, eta, xs, dxi, deta);
     n               = cross(dxi, deta);
     const double nn = std::sqrt(dot(n, n));
     if (!(nn > 0))
@@ -251,10 +248,7 @@ namespace coupling
     if (!prm_.flat_master || f < 0)
       return hit;
     const V3 p{x[0], x[1], x[2]};
-    const double slack = 0.02 * prm_.radius; // find_face's test of the face's inflated box
-    const auto &b      = face_box_[f];
-    if (p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack || p[0] > b[3] + slack ||
-        p[1] > b[4] + slack || p[2] > b[5] + slack)
+    if (outside_face_box(p, f))
       return hit;
     double xi = 0, eta = 0;
     if (!closest_point(p, s, f, xi, eta))
@@ -269,8 +263,7 @@ namespace coupling
     if (!face_point(s, f, xi, eta, xs, n))
       return hit;
     const double distance = dot(sub(p, xs), n);
-    const double reach    = prm_.method == ContactMethod::kinematic ? 2.0 * prm_.radius : prm_.radius;
-    if (distance < -2.0 * prm_.radius || distance > reach)
+    if (out_of_reach(distance))
       return hit;
     hit.face   = f;
     hit.gap    = distance - prm_.radius;
@@ -288,7 +281,6 @@ namespace coupling
     // cell index, turns away the particles behind it.
     if (surely_clear(x))
       return best;
-    const double slack = 0.02 * prm_.radius;
     int idx[3];
     for (int d = 0; d < 3; ++d)
     {
@@ -311,13 +303,8 @@ namespace coupling
       // its plane and over the face, so within the face's box inflated by 2 r: skip the Newton
       // iterations for any other face (1 % margin on the inflation for the closest-point
       // iteration's tolerance). A convex master also uses faces the particle is clear of.
-      if (!prm_.convex_master)
-      {
-        const auto &b = face_box_[f];
-        if (p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack ||
-            p[0] > b[3] + slack || p[1] > b[4] + slack || p[2] > b[5] + slack)
-          continue;
-      }
+      if (!prm_.convex_master && outside_face_box(p, f))
+        continue;
       double xi = 0, eta = 0;
       const bool converged = closest_point(p, s, f, xi, eta);
       // outside the face: skipped, except on a convex master across an edge shared with another
@@ -402,8 +389,7 @@ namespace coupling
       // missed on the next, flew into the face with a whole step of its internal force and was
       // thrown back: energy from nothing at every platen-mesh vertex line (a 2.5 mm elastic UCS
       // blew up). A step moves a particle far less than r (the CFL bound), so r of reach holds.
-      const double reach = prm_.method == ContactMethod::kinematic ? 2.0 * prm_.radius : prm_.radius;
-      if (distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > reach))
+      if (out_of_reach(distance))
         continue;
       const double gap = distance - prm_.radius;
       Hit &slot = past_rim ? over_rim : (!prm_.convex_master && (out_xi || out_eta)) ? across : best;

@@ -422,65 +422,56 @@ namespace coupling
     return fem_parameters(p.platens, 2.0 * p.sph.spacing);
   }
 
+  namespace
+  {
+    /// The angles about the z axis (ascending) of a cylinder platen's rim vertices, the contact
+    /// face's nodes on its largest radius, which it returns in `radius`.
+    std::vector<double> rim_vertex_angles(const fem::SteelBody &platen, double &radius)
+    {
+      const std::vector<double> x = platen.contact_positions();
+      radius                      = 0;
+      for (std::size_t i = 0; i < x.size(); i += 3)
+        radius = std::max(radius, std::hypot(x[i], x[i + 1]));
+      std::vector<double> angle;
+      for (std::size_t i = 0; i < x.size(); i += 3)
+        if (std::hypot(x[i], x[i + 1]) > (1 - 1e-9) * radius)
+          angle.push_back(std::atan2(x[i + 1], x[i]));
+      std::sort(angle.begin(), angle.end());
+      return angle;
+    }
+  } // namespace
+
   double rim_sagitta(const fem::SteelBody &platen)
   {
-    // the contact face's nodes on its largest radius are the rim polygon's vertices
-    const std::vector<double> x = platen.contact_positions();
-    double radius               = 0;
-    for (std::size_t i = 0; i < x.size(); i += 3)
-      radius = std::max(radius, std::hypot(x[i], x[i + 1]));
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < x.size(); i += 3)
-      if (std::hypot(x[i], x[i + 1]) > (1 - 1e-9) * radius)
-        ++n;
-    return n >= 3 ? radius * (1 - std::cos(M_PI / static_cast<double>(n))) : 0.0;
+    double radius   = 0;
+    const double n  = static_cast<double>(rim_vertex_angles(platen, radius).size());
+    return n >= 3 ? radius * (1 - std::cos(M_PI / n)) : 0.0;
   }
 
   void set_rim_polygon(ContactParameters &cp, const fem::SteelBody &platen, const double specimen_radius)
   {
-    const std::vector<double> x = platen.contact_positions();
-    const std::size_t n_nodes   = x.size() / 3;
-    if (n_nodes < 3)
-      return;
-    double centre[2] = {0, 0};
-    for (std::size_t i = 0; i < n_nodes; ++i)
-      centre[0] += x[3 * i] / n_nodes, centre[1] += x[3 * i + 1] / n_nodes;
-    double radius = 0;
-    for (std::size_t i = 0; i < n_nodes; ++i)
-      radius = std::max(radius, std::hypot(x[3 * i] - centre[0], x[3 * i + 1] - centre[1]));
-    std::vector<double> angle;
-    for (std::size_t i = 0; i < n_nodes; ++i)
-      if (std::hypot(x[3 * i] - centre[0], x[3 * i + 1] - centre[1]) > (1 - 1e-9) * radius)
-        angle.push_back(std::atan2(x[3 * i + 1] - centre[1], x[3 * i] - centre[0]));
+    double radius                   = 0;
+    const std::vector<double> angle = rim_vertex_angles(platen, radius);
     if (angle.size() < 3)
       return;
-    std::sort(angle.begin(), angle.end());
     double widest = 2 * M_PI - (angle.back() - angle.front());
     for (std::size_t k = 1; k < angle.size(); ++k)
       widest = std::max(widest, angle[k] - angle[k - 1]);
-    // the polygon's chords lie at R cos(a) from the centre, a the largest half-angle
-    if (specimen_radius < radius * std::cos(0.5 * widest))
-      return;
-    cp.rim_angles    = angle;
-    cp.rim_centre[0] = centre[0];
-    cp.rim_centre[1] = centre[1];
+    // the polygon's chords lie at R cos(a) from the axis, a the largest half-angle
+    if (specimen_radius >= radius * std::cos(0.5 * widest))
+      cp.rim_angles = angle;
   }
 
   void set_face_remap(ContactParameters &cp, const std::vector<sph::Vector<3>> &x0,
                       const std::vector<double> &loaded_area, const std::vector<double> &cell_area,
                       const double dx)
   {
-    double centre[2] = {0, 0}, r_max = 0;
-    std::size_t n = 0;
+    double r_max = 0;
     for (std::size_t i = 0; i < loaded_area.size(); ++i)
       if (loaded_area[i] > 0)
-        centre[0] += x0[i][0], centre[1] += x0[i][1], ++n;
-    if (n == 0)
+        r_max = std::max(r_max, std::hypot(x0[i][0], x0[i][1]));
+    if (!(r_max > 0))
       return;
-    centre[0] /= n, centre[1] /= n;
-    for (std::size_t i = 0; i < loaded_area.size(); ++i)
-      if (loaded_area[i] > 0)
-        r_max = std::max(r_max, std::hypot(x0[i][0] - centre[0], x0[i][1] - centre[1]));
     // E(r) on edges of dx / 8 out to the outermost cell's far side
     const double bin        = dx / 8;
     const std::size_t edges = static_cast<std::size_t>(std::ceil((r_max + dx) / bin)) + 1;
@@ -489,7 +480,7 @@ namespace coupling
     {
       if (!(loaded_area[i] > 0))
         continue;
-      const double r = std::hypot(x0[i][0] - centre[0], x0[i][1] - centre[1]);
+      const double r = std::hypot(x0[i][0], x0[i][1]);
       const double a = 0.5 * (loaded_area[i] - cell_area[i]); // two end faces
       const double lo = std::max(0.0, r - 0.5 * dx), hi = r + 0.5 * dx;
       for (std::size_t k = 0; k + 1 < edges; ++k)
@@ -500,18 +491,15 @@ namespace coupling
           excess[k] += a * (e1 * e1 - e0 * e0) / (hi * hi - lo * lo);
       }
     }
-    cp.face_radius.assign(edges, 0.0);
+    cp.face_remap_step = bin;
     cp.face_radius_mapped.assign(edges, 0.0);
     double sum = 0;
     for (std::size_t k = 0; k < edges; ++k)
     {
-      const double r          = k * bin;
-      cp.face_radius[k]        = r;
+      const double r           = k * bin;
       cp.face_radius_mapped[k] = std::sqrt(std::max(0.0, r * r + sum / M_PI));
       sum += excess[k];
     }
-    cp.rim_centre[0] = centre[0];
-    cp.rim_centre[1] = centre[1];
   }
 
   unsigned int contact_patch_points(const CaseParameters &p)

@@ -147,15 +147,14 @@ namespace coupling
   /// inside its circle at the chords' middles, R (1 - cos(pi / n)) [m] (ContactParameters::rim_reach).
   double rim_sagitta(const fem::SteelBody &platen);
 
-  /// ContactParameters::rim_angles, rim_radius, rim_centre from a cylinder platen's contact face
-  /// (its rim vertices: the face's nodes on its largest radius about the nodes' centroid), set
-  /// only where the specimen of radius `specimen_radius` reaches past the polygon's chords
+  /// ContactParameters::rim_angles from a cylinder platen's contact face (its rim vertices: the
+  /// face's nodes on its largest radius about the z axis), set only where the specimen of radius `specimen_radius` reaches past the polygon's chords
   /// (a platen as wide as the specimen, within the sagitta); on a wider platen the rock's rim
   /// lies inside the polygon and is left where it is. Leaves `cp` unchanged otherwise.
   void set_rim_polygon(ContactParameters &cp, const fem::SteelBody &platen, double specimen_radius);
 
-  /// ContactParameters::face_radius / face_radius_mapped (and rim_centre, the end particles'
-  /// mean) from the loaded end particles (loaded_area > 0; reference positions x0, cell areas
+  /// ContactParameters::face_radius_mapped and face_remap_step (dx / 8) from the loaded end
+  /// particles about the z axis (loaded_area > 0; reference positions x0, cell areas
   /// volume / layer thickness, spacing dx): each cell's A_i - c_i spread evenly over the radii
   /// r_i +- dx / 2 and summed outwards to E(r), then r' = sqrt(r^2 + E(r) / pi), so that the
   /// circle of r' holds the discrete area inside r. Both end faces are the same: their

@@ -424,7 +424,7 @@ namespace coupling
     if (!bts_) // the cylinder platens' rim polygons: inside their circle by the chords' sagitta
       cp.rim_reach = std::max(rim_sagitta(*top_), rim_sagitta(*bottom_));
     // Elastic cylinder platens: the particles' forces land on the steel where a uniform stress
-    // would put them (the loaded ends' discrete areas, ContactParameters::face_radius; the
+    // would put them (the loaded ends' discrete areas, ContactParameters::face_radius_mapped; the
     // circle onto the mesh's rim polygon, rim_angles). Without them the steel under a specimen
     // of its own diameter bent by a micrometre under a uniform stress, and the end layer of a
     // softening rock failed early (M1, 2.5 mm, body-fitted: 272.7 MPa against 282.3 with them).

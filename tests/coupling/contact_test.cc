@@ -693,6 +693,7 @@ TEST(ContactKinematic, TheRimMapLoadsThePlatensPolygonUniformly)
   ContactParameters p;
   for (int k = 0; k < n; ++k) // an arbitrary phase: the first vertex at -pi + 0.1
     p.rim_angles.push_back(-M_PI + 0.1 + 2 * a * k);
+  // 1e-15 m: round-off of the angles' sines and cosines on a 25 mm radius (a few ulps)
   for (int k = 0; k < n; ++k)
   {
     double x = R * std::cos(p.rim_angles[k]), y = R * std::sin(p.rim_angles[k]);
@@ -719,6 +720,7 @@ TEST(ContactKinematic, TheRimMapLoadsThePlatensPolygonUniformly)
       double u = std::atan2(y, x) - p.rim_angles[0];
       u -= 2 * a * std::floor(u / (2 * a)); // within its sector, 0 to 2a
       const double across = x * std::cos(std::atan2(y, x) - u + a) + y * std::sin(std::atan2(y, x) - u + a);
+      // 1e-12: round-off only (a point mapped onto a chord lies on it)
       ASSERT_LE(across, R * std::cos(a) * (1 + 1e-12)) << "outside the polygon";
       count[std::min(9, int(u / (2 * a) * 10))] += 1;
       total += 1;
@@ -781,15 +783,18 @@ TEST(ContactKinematic, TheFaceRemapPutsTheDiscreteAreaInsideEachCircle)
     map_contact_point(p, x, y);
     return x;
   };
-  // identity well inside (no cell within dx / 2 of r has A != c)
+  // identity well inside (no cell within dx / 2 of r has A != c): sqrt(r^2) and the linear
+  // interpolation between two such entries, round-off (1e-15 m, a few ulps of 10 mm)
   EXPECT_NEAR(mapped(0.010), 0.010, 1e-15);
   EXPECT_NEAR(mapped(0.018), 0.018, 1e-15);
   // at the boundary between the two outer rings the circle of r' holds the disc inside it plus
   // the second ring's excess (the spreading over r_i +- dx / 2 puts all of it inside r = R - dx,
   // the cells' outer edges, and none of the outer ring's deficit)
   const double r1 = R - dx;
+  // 1e-12: r1 is a table entry (a multiple of dx / 8), so only the sums' round-off is left
   EXPECT_NEAR(M_PI * std::pow(mapped(r1), 2) / (M_PI * r1 * r1 + excess), 1.0, 1e-12);
-  // the whole face maps onto itself: the areas add up
+  // the whole face maps onto itself: the areas add up (1e-12 m: the excesses' sum cancels to
+  // round-off)
   EXPECT_NEAR(mapped(R), R, 1e-12);
   EXPECT_NEAR(mapped(R + 0.5 * dx), R + 0.5 * dx, 1e-12);
   // monotonic: no two contact points swap places

@@ -274,8 +274,8 @@ TEST(CoupledKinematic, BondedElasticPlatensGiveTheFeReferencePeakAndEndFace)
   const double rms        = end_face_rms(face, coupled, r, 0.5 * p.diameter);
   std::cout << "[elastic bonded] coupled " << coupled / 1e6 << " MPa, reference " << r.peak_stress / 1e6
             << " MPa; end face at half the peak: RMS " << rms << "\n";
-  // 2 %: the interface's target against the reference; measured 270.71 against 268.99 MPa
-  // (+0.6 %; 270.64 before the contact points were mapped, ContactParameters::face_radius)
+  // 2 %: the interface's target against the reference; measured 270.73 against 268.99 MPa
+  // (+0.6 %; 270.64 before the contact points were mapped, ContactParameters::face_radius_mapped)
   EXPECT_NEAR(coupled / r.peak_stress, 1.0, 0.02);
   // 5 % RMS over the face, as with rigid bonded ends (the test above); measured 3.0 % (2.3 %
   // before the contact points were mapped)
@@ -335,7 +335,7 @@ TEST(CoupledKinematic, ASofteningRockOnElasticPlatensOfItsDiameterReachesTheClos
   // particle the steel loads unevenly (Mohr-Coulomb's q = 14 at phi 63.7 deg turns 1 % of
   // lateral tension into 14 % less strength): the steel face must stay flat to a small fraction
   // of a micrometre under the end layer. The specimen is body-fitted (its side round, no
-  // staircase), 2.5 mm. Before the contact points were mapped (ContactParameters::face_radius,
+  // staircase), 2.5 mm. Before the contact points were mapped (ContactParameters::face_radius_mapped,
   // rim_angles) and the patches sampled at 4 x 4 points, the same run gave 261.9 MPa (lattice)
   // and 262.5 (body-fitted), the first failure in the end layer at 0.69 of the strength.
   const CaseParameters p = kinematic_case(

@@ -102,26 +102,26 @@ namespace coupling
     /// particle keeps that edge's face [m]; at least r. A platen's rim polygon lies inside its
     /// circle by up to R (1 - cos(pi / n)) for n rim vertices, which the driver passes here.
     double rim_reach = 0.0;
-    /// Kinematic on a deformable cylinder platen as wide as the specimen: the platen's circle's
-    /// centre and its mesh's rim polygon (the rim vertices' angles, ascending in
+    /// Kinematic on a deformable cylinder platen as wide as the specimen: its mesh's rim polygon
+    /// (the rim vertices' angles about the z axis, the specimen's and the platen's, ascending in
     /// [-pi, pi)). The contact points (a particle's centre and its patch's sample points) are
     /// mapped from the circle onto the polygon, sector by sector, with a uniform area ratio
     /// (map_onto_rim_polygon), before the face is looked for. Without it a specimen as wide as
-    /// its platen loads the polygon's rim nodes with what lies between the chords and the
-    /// circle (a 50 mm platen with 16 rim vertices: 2.6 % of the area, the rim nodes 16 % above
-    /// their consistent loads) and the steel face dishes by a micrometre. Empty: no map.
+    /// its platen loads the polygon's rim elements with what lies between the chords and the
+    /// circle (a 50 mm platen with 16 rim vertices: 2.6 % of the area) and the steel face
+    /// dishes. Empty: no map.
     std::vector<double> rim_angles;
-    double rim_centre[2] = {0, 0}; ///< the circle's centre x, y [m]
-    /// Kinematic on a deformable face of a loaded end (sph::Body::add_loaded_face): the radius r
-    /// about rim_centre of a contact point and the radius r' it is moved to, tabulated
-    /// (ascending; linear between, the identity beyond). A uniform stress pushes each end
-    /// particle with its discrete loaded area A_i, which near the specimen's side is not its
-    /// cell's (2.5 mm lattice, 50 mm cylinder: 1.2 to 1.25 times the cell two rows in, 0.66
-    /// times it in the outer row), so the steel under a uniform stress saw a ring 25 % over and
-    /// the rim 34 % under its pressure and bent a micrometre. With pi r'^2 = the discrete area
-    /// inside r the forces land where a uniform pressure would put them; the forces themselves
-    /// are not changed (momentum stays exact). Empty: no remap.
-    std::vector<double> face_radius, face_radius_mapped;
+    /// Kinematic on a deformable face of a loaded end (sph::Body::add_loaded_face): the radius
+    /// r' about the z axis that a contact point at radius r is moved to, tabulated at r = k
+    /// face_remap_step (linear between, the identity beyond the table). A uniform stress pushes
+    /// each end particle with its discrete loaded area A_i, which near the specimen's side is
+    /// not its cell's (2.5 mm, 50 mm cylinder: 1.2 to 1.25 times the cell two rows in, 0.66
+    /// times it in the outer row; tests/sph unit_loaded_face.cc), so the steel under a uniform
+    /// stress saw a ring 25 % over and the rim 34 % under its pressure and bent. With pi r'^2 =
+    /// the discrete area inside r the forces land where a uniform pressure would put them; the
+    /// forces themselves are not changed (momentum stays exact). Empty: no remap.
+    std::vector<double> face_radius_mapped;
+    double face_remap_step = 0.0; ///< [m]
     /// The master surface is convex towards the rock (a wedge, cone or disc cutter): of the faces
     /// a particle projects onto, take the one it is farthest in front of (the signed distance to a
     /// convex body is the largest over its face planes), not the most penetrated one, which near
@@ -139,7 +139,7 @@ namespace coupling
     bool flat_master = false;
   };
 
-  /// The point (x, y) of the platen's disc (about `p.rim_centre`), mapped onto the
+  /// The point (x, y) of the platen's disc (about the z axis), mapped onto the
   /// rim polygon of `p.rim_angles` (ContactParameters): in the sector between two rim vertices
   /// (half-angle a, its middle at angle m) the point at radius r and angle m + u goes to angle
   /// m + phi, tan(phi) = tan(a) u / a, and radius r cos(a) / cos(phi). The circle's arc lands on
@@ -149,7 +149,7 @@ namespace coupling
   void map_onto_rim_polygon(const ContactParameters &p, double &x, double &y);
 
   /// Where a contact point (x, y) of a particle's patch loads a deformable face: moved radially
-  /// by ContactParameters::face_radius -> face_radius_mapped, then onto the rim polygon
+  /// by ContactParameters::face_radius_mapped, then onto the rim polygon
   /// (map_onto_rim_polygon). No-op where neither is set.
   void map_contact_point(const ContactParameters &p, double &x, double &y);
 
@@ -245,6 +245,23 @@ namespace coupling
     /// ask find_face). A particle's patch samples mostly lie on its own face: this spares them
     /// the search.
     Hit inside_face(const double *x, const ContactSurface &surface, int f) const;
+    /// Whether p lies outside face f's box inflated by 2 r and find_face's slack (0.02 r): a
+    /// flat or concave master's face cannot hold it then.
+    bool outside_face_box(const std::array<double, 3> &p, int f) const
+    {
+      const double slack = 0.02 * prm_.radius;
+      const auto &b      = face_box_[f];
+      return p[0] < b[0] - slack || p[1] < b[1] - slack || p[2] < b[2] - slack || p[0] > b[3] + slack ||
+             p[1] > b[4] + slack || p[2] > b[5] + slack;
+    }
+    /// Whether a particle at this signed distance from a face's plane is not in contact with it:
+    /// more than a diameter behind it, or (flat and concave masters) in front of it by more than
+    /// the reach (kinematic: 2 r, the particles the step may bring in; penalty: r).
+    bool out_of_reach(const double distance) const
+    {
+      const double reach = prm_.method == ContactMethod::kinematic ? 2.0 * prm_.radius : prm_.radius;
+      return distance < -2.0 * prm_.radius || (!prm_.convex_master && distance > reach);
+    }
     /// Newton iterations from (xi, eta) for the closest point of face f to p (parametric);
     /// false where they did not converge (8 at most) or the face is degenerate there.
     bool closest_point(const std::array<double, 3> &p, const ContactSurface &surface, int f, double &xi,
