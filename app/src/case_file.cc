@@ -630,7 +630,7 @@ namespace app
         result.warnings.push_back(
           "Platens/Diameter = " + keys::format(p.platens.diameter) +
           " m: elastic platens about as wide as a lattice specimen take its staircase side on their rim, "
-          "which loads the steel unevenly (M1 on rollers, 2.5 mm, default softening: 272.8 MPa against 282.2 "
+          "which loads the steel unevenly (M1 on rollers, 2.5 mm, default softening: 272.7 MPa against 283.0 "
           "on the body-fitted specimen, the closed form 282.19); set SPH/Particle arrangement = body-fitted");
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       const double smallest = std::min(p.diameter, p.length);
