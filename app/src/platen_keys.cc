@@ -61,7 +61,7 @@ namespace app::keys
     });
     s.add<int>("Contact patch points", pl.contact_patch_points,
                "kinematic contact on elastic platens: a particle's force is spread over its patch of the face (its cell's end face), sampled at N x N points; 1 = at one point; 0 = 4 for UCS and CTCS, for BTS from the element size h and the spacing dx, ceil((2 dx / h)^2) up to 4 [-]",
-               [](int v) { return v >= 0 && v <= 4; }, "must be in [0, 4] (0 = automatic)");
+               [](int v) { return v >= 0 && v <= 16; }, "must be in [0, 16] (0 = automatic)");
     s.check("Contact patch points", [&p, elastic_kinematic_only]() {
       return elastic_kinematic_only(
         p.platens.contact_patch_points == coupling::PlatenParameters().contact_patch_points, "0");

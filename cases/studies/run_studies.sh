@@ -158,6 +158,27 @@ run() {
                     --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
                     --set "SPH/Particle arrangement=body-fitted" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
+    platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Contact patch points=1,2,4,8,16" ;;
+    # wider platens on the body-fitted specimen (ISRM: up to D + 2 mm), at three spacings
+    platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Loaded face=roller" --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Platens/Diameter=0.051,0.052" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # the default steel platens (60 mm, clamped, elements of 2 dx), frictionless, on the body-fitted
+    # specimen: perfectly plastic, strain softening, crack band, at three spacings
+    platens-wide-fitted) study platens-wide-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-wide-fitted-crack-band) study platens-wide-fitted-crack-band $ucs --set "Platens/Model=elastic" \
+                    --set "SPH/Particle arrangement=body-fitted" --set "Rock/Softening law=fracture energy" \
+                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # every spacing with every platen mesh (the default softening)
+    platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs --set "Platens/Model=elastic" \
+                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Platens/Element size=0.01,0.005,0.0025" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
@@ -172,7 +193,9 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
      heterogeneous-bts-fracture-energy heterogeneous-ucs-elastic-platens heterogeneous-ucs-elastic-bonded
      heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh platens-rollers-overhang
-     platens-rollers-spacing-fitted platens-rollers-mesh-fitted)
+     platens-rollers-spacing-fitted platens-rollers-mesh-fitted platens-rollers-patch-fitted
+     platens-rollers-overhang-fitted platens-rollers-grid-fitted
+     platens-wide-fitted platens-wide-fitted-crack-band)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done

@@ -414,7 +414,7 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
     {"Platens/Contact tolerance=0", {"Platens/Contact tolerance", "(0, 0.01]"}},
     // rigid platens: the tolerance would be read and ignored
     {"Platens/Contact tolerance=1e-5", {"Platens/Contact tolerance", "elastic platens only"}},
-    {"Platens/Contact patch points=5", {"Platens/Contact patch points", "[0, 4]"}},
+    {"Platens/Contact patch points=17", {"Platens/Contact patch points", "[0, 16]"}},
     // rigid platens: the patch points and the loaded face would be read and ignored
     {"Platens/Contact patch points=2", {"Platens/Contact patch points", "elastic platens only"}},
     {"Platens/Loaded face=roller", {"Platens/Loaded face", "Model = elastic"}},
