@@ -89,7 +89,7 @@ namespace app::keys
     });
     s.add<double>("Thickness", pl.thickness, "along the loading axis [m]", [](double v) { return v > 0 && v <= 10; },
                   "must be in (0, 10] m");
-    s.add<double>("Diameter", pl.diameter, "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen",
+    s.add<double>("Diameter", pl.diameter, "diameter (UCS/CTCS) or width (BTS) [m]; 0 = from the specimen: 1.2 D (UCS/CTCS), 0.6 D (BTS)",
                   [](double v) { return v >= 0 && v <= 10; }, "must be in [0, 10] m (0 = from the specimen)");
     // 0 selects the rule (from the particle spacing); another value is the steel's element size
     {

@@ -42,12 +42,12 @@ namespace
   }
 
   /// The platen geometry the driver builds for a UCS case (specimen_driver.cc, build_platens):
-  /// a steel disc D + 4 dx wide, elements of 2 dx; here the bottom one (both are alike).
+  /// a steel disc 1.2 D wide, elements of 2 dx; here the bottom one (both are alike).
   fem::SteelBody bottom_platen(const CaseParameters &c)
   {
     fem::BodyGeometry g;
     g.shape     = fem::BodyShape::cylinder;
-    g.diameter  = c.diameter + 4.0 * c.sph.spacing;
+    g.diameter  = 1.2 * c.diameter;
     g.thickness = c.platens.thickness;
     g.side      = fem::BodySide::below;
     g.contact_z = 0.0;
