@@ -632,7 +632,7 @@ namespace app
           " m: elastic platens about as wide as a lattice specimen take its staircase side on their rim, "
           "which loads the steel unevenly (M1 on rollers, 2.5 mm, default softening: 272.7 MPa against 283.0 "
           "on the body-fitted specimen, the closed form 282.19); set SPH/Particle arrangement = body-fitted");
-      const double platen_diameter = p.platens.diameter > 0 ? p.platens.diameter : 1.2 * p.diameter;
+      const double platen_diameter = coupling::cylinder_platen_diameter(p);
       if ((p.test == "UCS" || p.test == "CTCS") && p.platens.steel.model == fem::SteelModel::elastic &&
           p.platens.friction == 0 && !p.platens.bonded && platen_diameter > p.diameter * (1 + 1e-9))
         result.warnings.push_back(

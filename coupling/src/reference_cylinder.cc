@@ -702,7 +702,7 @@ namespace coupling
   double reference_platen_diameter(const CaseParameters &prm)
   {
     // as the coupled driver builds its platens (specimen_driver.cc, build_platens)
-    return prm.platens.diameter > 0 ? prm.platens.diameter : prm.diameter + 4.0 * prm.sph.spacing;
+    return cylinder_platen_diameter(prm);
   }
 
   ReferencePointUpdate reference_point_update(const sph::rock::Model &model,

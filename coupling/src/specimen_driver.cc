@@ -220,9 +220,7 @@ namespace coupling
       if (prm_.platens.shape != "flat")
         throw InputError("Platens/Shape: " + prm_.test + " uses flat platens; jaw is for BTS only");
       g.shape    = fem::BodyShape::cylinder;
-      // 0: 1.2 D, a size of the machine's, not of the discretisation (the overhang sets the
-      // peak on frictionless steel: cases/studies/platens/README.md)
-      g.diameter = prm_.platens.diameter > 0 ? prm_.platens.diameter : 1.2 * prm_.diameter;
+      g.diameter = cylinder_platen_diameter(prm_);
     }
     double top_z = bts_ ? prm_.diameter : prm_.length, bottom_z = 0.0;
     if (g.shape == fem::BodyShape::jaw)

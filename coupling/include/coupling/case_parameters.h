@@ -170,4 +170,12 @@ namespace coupling
                                                                   : ContactMethod::penalty;
   }
 
+  /// The diameter of a UCS/CTCS cylinder platen: Platens/Diameter, 0 = 1.2 D, a size of the
+  /// machine's, not of the discretisation (the overhang sets the peak on frictionless elastic
+  /// steel: cases/studies/platens/README.md) [m].
+  inline double cylinder_platen_diameter(const CaseParameters &p)
+  {
+    return p.platens.diameter > 0 ? p.platens.diameter : 1.2 * p.diameter;
+  }
+
 } // namespace coupling
