@@ -639,8 +639,9 @@ namespace app
           "Platens/Diameter = " + keys::format(platen_diameter) +
           " m: the rock's rim on frictionless elastic platens wider than the specimen is a stress "
           "singularity, and the peak does not converge in spacing (M1, body-fitted, 60 mm platens: "
-          "PLACEHOLDER); quote a peak from platens of the specimen's diameter on rollers "
-          "(Platens/Diameter = Test/Diameter, Platens/Loaded face = roller)");
+          "244.6 / 187.2 / 161.9 MPa at 5 / 2.5 / 1.25 mm against the closed form 282.2); quote a "
+          "peak from platens of the specimen's diameter on rollers (Platens/Diameter = Test/Diameter, "
+          "Platens/Loaded face = roller)");
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       const double smallest = std::min(p.diameter, p.length);
       if (cutting)
