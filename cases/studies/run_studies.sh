@@ -174,6 +174,13 @@ run() {
     platens-wide-fitted-crack-band) study platens-wide-fitted-crack-band $ucs --set "Platens/Model=elastic" \
                     --set "SPH/Particle arrangement=body-fitted" --set "Rock/Softening law=fracture energy" \
                     --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # the same platens with end friction and bonded ends
+    platens-wide-fitted-friction) study platens-wide-fitted-friction $ucs --set "Platens/Model=elastic" \
+                    --set "SPH/Particle arrangement=body-fitted" \
+                    --vary "Platens/Friction coefficient=0.1,0.3" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-wide-fitted-bonded) study platens-wide-fitted-bonded $ucs --set "Platens/Model=elastic" \
+                    --set "SPH/Particle arrangement=body-fitted" --set "Platens/Bonded=true" \
+                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     # every spacing with every platen mesh (the default softening)
     platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs --set "Platens/Model=elastic" \
                     --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
@@ -195,7 +202,8 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      heterogeneous-ucs-elastic-mesh platens-rollers-spacing platens-rollers-mesh platens-rollers-overhang
      platens-rollers-spacing-fitted platens-rollers-mesh-fitted platens-rollers-patch-fitted
      platens-rollers-overhang-fitted platens-rollers-grid-fitted
-     platens-wide-fitted platens-wide-fitted-crack-band)
+     platens-wide-fitted platens-wide-fitted-crack-band platens-wide-fitted-friction
+     platens-wide-fitted-bonded)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
