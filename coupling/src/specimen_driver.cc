@@ -202,7 +202,8 @@ namespace coupling
     if (bts_)
     {
       g.size_x = prm_.platens.diameter > 0 ? prm_.platens.diameter : 0.6 * prm_.diameter;
-      g.size_y = prm_.length + 4.0 * dx;
+      // 5 mm past each face of the disc, whatever the spacing (a size of the machine's)
+      g.size_y = prm_.length + 0.01;
       if (prm_.platens.shape == "jaw")
       {
         // ISRM curved jaw: contact arc of 1.5 disc radii unless given
