@@ -164,10 +164,11 @@ TEST(CaseFile, ElasticPlatensAsWideAsALatticeSpecimenAreWarned)
   EXPECT_TRUE(app::read_case_file(source("cases/ucs/ucs.prm"), {"Platens/Diameter=0.05"}).warnings.empty());
 }
 
-TEST(CaseFile, FrictionlessElasticPlatensWiderThanTheSpecimenAreWarned)
+TEST(CaseFile, ElasticPlatensWiderThanTheSpecimenAreWarned)
 {
-  // their peak is set at the rock's rim and does not converge: say so and name the platens that
-  // do; friction, bonded ends, platens of the specimen's diameter and rigid platens not
+  // their peak is set at the rock's rim and does not converge, frictionless or with friction:
+  // say so and name the platens that do; bonded ends, platens of the specimen's diameter and
+  // rigid platens not
   const auto warned = [](std::vector<std::string> settings) {
     settings.push_back("SPH/Particle arrangement=body-fitted");
     const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), settings);
@@ -176,12 +177,12 @@ TEST(CaseFile, FrictionlessElasticPlatensWiderThanTheSpecimenAreWarned)
   };
   EXPECT_TRUE(warned({"Platens/Model=elastic"}));
   EXPECT_TRUE(warned({"Platens/Model=elastic", "Platens/Diameter=0.051"}));
+  EXPECT_TRUE(warned({"Platens/Model=elastic", "Platens/Friction coefficient=0.3"}));
   const auto quiet = [](std::vector<std::string> settings) {
     settings.push_back("SPH/Particle arrangement=body-fitted");
     return app::read_case_file(source("cases/ucs/ucs.prm"), settings).warnings.empty();
   };
   EXPECT_TRUE(quiet({"Platens/Model=elastic", "Platens/Diameter=0.05"}));
-  EXPECT_TRUE(quiet({"Platens/Model=elastic", "Platens/Friction coefficient=0.3"}));
   EXPECT_TRUE(quiet({"Platens/Model=elastic", "Platens/Bonded=true"}));
   EXPECT_TRUE(quiet({"Platens/Diameter=0.06"}));
 }
