@@ -388,9 +388,10 @@ TEST(CoupledKinematic, TheContactPatchIsConvergedAtItsDefaultPoints)
   // (the case that needs the patch), body-fitted, at 5 mm (for time): N x 4 = 16 and N / 2 = 2
   // must move the peak by less than 0.5 % and the platen-read modulus by less than 1 % (the
   // interface's targets; measured 280.22 / 280.94 / 280.96 MPa at 2 / 4 / 16, -0.26 % and
-  // +0.006 %; the modulus 80.053 GPa within 0.01 %). N = 1 is no patch but a point load, which aliases against the mesh
-  // (2.5 mm, cases/studies/platens/README.md: 272.3 against 283.0 MPa): the patch is part of the
-  // formulation, as the loaded-face correction is, and is not varied below 2.
+  // +0.006 %; the modulus 80.053 GPa within 0.01 %). N = 1 is no patch but a point load, which
+  // aliases against the mesh (2.5 mm, cases/studies/platens/README.md: 272.3 against 283.0
+  // MPa): the patch is part of the formulation, as the loaded-face correction is, and is not
+  // varied below 2.
   auto run = [](const std::string &points) {
     const CaseParameters p = kinematic_case(
       "ucs/ucs.prm", {"Platens/Model=elastic", "Platens/Diameter=0.05", "Platens/Loaded face=roller",
