@@ -637,16 +637,18 @@ namespace app
           !p.platens.bonded && platen_diameter > p.diameter * (1 + 1e-9))
         result.warnings.push_back(
           "Platens/Diameter = " + keys::format(platen_diameter) +
-          " m: the rock's rim on elastic platens wider than the specimen is a stress singularity, and "
+          " m: the rock's rim on elastic platens wider than the specimen acts as a stress singularity: "
           "the peak does not converge in spacing (M1, body-fitted, 60 mm platens, default softening, "
           "5 / 2.5 / 1.25 mm: 244.6 / 187.2 / 161.9 MPa frictionless, 252.3 / 258.3 / 231.0 at "
           "friction 0.3; the closed form 282.2); quote a peak from platens of the specimen's "
           "diameter on rollers (Platens/Diameter = Test/Diameter, Platens/Loaded face = roller)");
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       // platen elements finer than the particles: the kinematic contact on elastic platens is not
-      // stable at the platens' step (measured, 5 mm particles on 2.5 mm elements: 185.0 against
-      // 281.4 MPa on 5 mm elements, the kinetic energy growing from a third of the strength; at
-      // half the step still 270.0)
+      // stable at the platens' step (measured on UCS, 5 mm particles on 2.5 mm elements: 185.0
+      // against 281.4 MPa on 5 mm elements, the kinetic energy growing from a third of the
+      // strength; at half the step still 270.0). BTS is refused alike, unmeasured: the trigger,
+      // the held distance r (n . F n) on face nodes lighter than the particle, is the same there
+      // (cases/studies/platens/README.md)
       if (!cutting && p.platens.steel.model == fem::SteelModel::elastic &&
           coupling::contact_method(p) == coupling::ContactMethod::kinematic &&
           !p.platens.element_size_from_spacing && p.platens.steel.element_size < p.sph.spacing * (1 - 1e-9))

@@ -15,6 +15,9 @@ ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm
 quick=(--set "Output/Snapshots=2")
 het=(--set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" --set "Rock/Softening law=fracture energy")
+steel=(--set "Platens/Model=elastic")
+rollers=("${steel[@]}" --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller")
+fitted=(--set "SPH/Particle arrangement=body-fitted")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 
 study() { # NAME CASE ARGS...
@@ -139,53 +142,41 @@ run() {
                     --vary "Rock/Scatter seed=1,2,3" ;;
     # steel platens of the specimen's diameter on rollers (uniaxial throughout), perfectly plastic
     # and with the default softening: spacing with the elements at two spacings, and the mesh
-    platens-rollers-spacing) study platens-rollers-spacing $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+    platens-rollers-spacing) study platens-rollers-spacing $ucs "${rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     # the same platens 0.5 to 2 mm wider than the specimen (ISRM allows up to D + 2 mm)
-    platens-rollers-overhang) study platens-rollers-overhang $ucs --set "Platens/Model=elastic" \
+    platens-rollers-overhang) study platens-rollers-overhang $ucs "${steel[@]}" \
                     --set "Platens/Loaded face=roller" --vary "Rock/Residual fraction=1,0.1" \
                     --vary "Platens/Diameter=0.05,0.0505,0.051,0.052" ;;
-    platens-rollers-mesh) study platens-rollers-mesh $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
+    platens-rollers-mesh) study platens-rollers-mesh $ucs "${rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     # the same on the body-fitted specimen (its side round: no staircase against the platen's rim)
-    platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
-                    --set "SPH/Particle arrangement=body-fitted" \
+    platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
-                    --set "SPH/Particle arrangement=body-fitted" \
+    platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
-    platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
-                    --set "SPH/Particle arrangement=body-fitted" \
+    platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Contact patch points=1,2,4,8,16" ;;
+    # every spacing with the coarser meshes (the default softening; elements finer than the
+    # particles are refused, and 2.5 mm elements at 2.5 and 1.25 mm are in -mesh- and -spacing-fitted)
+    platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
+                    --vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     # wider platens on the body-fitted specimen (ISRM: up to D + 2 mm), at three spacings
-    platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Loaded face=roller" --set "SPH/Particle arrangement=body-fitted" \
+    platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs "${steel[@]}" "${fitted[@]}" \
+                    --set "Platens/Loaded face=roller" \
                     --vary "Platens/Diameter=0.051,0.052" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    # the default steel platens (60 mm, clamped, elements of 2 dx), frictionless, on the body-fitted
-    # specimen: perfectly plastic, strain softening, crack band, at three spacings
-    platens-wide-fitted) study platens-wide-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "SPH/Particle arrangement=body-fitted" \
+    # the default steel platens (60 mm, clamped, elements of 2 dx) on the body-fitted specimen at
+    # three spacings: frictionless (perfectly plastic, strain softening, crack band), with end
+    # friction, bonded
+    platens-wide-fitted) study platens-wide-fitted $ucs "${steel[@]}" "${fitted[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    platens-wide-fitted-crack-band) study platens-wide-fitted-crack-band $ucs --set "Platens/Model=elastic" \
-                    --set "SPH/Particle arrangement=body-fitted" --set "Rock/Softening law=fracture energy" \
-                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    # the same platens with end friction and bonded ends
-    platens-wide-fitted-friction) study platens-wide-fitted-friction $ucs --set "Platens/Model=elastic" \
-                    --set "SPH/Particle arrangement=body-fitted" \
+    platens-wide-fitted-crack-band) study platens-wide-fitted-crack-band $ucs "${steel[@]}" "${fitted[@]}" \
+                    --set "Rock/Softening law=fracture energy" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-wide-fitted-friction) study platens-wide-fitted-friction $ucs "${steel[@]}" "${fitted[@]}" \
                     --vary "Platens/Friction coefficient=0.1,0.3" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    platens-wide-fitted-bonded) study platens-wide-fitted-bonded $ucs --set "Platens/Model=elastic" \
-                    --set "SPH/Particle arrangement=body-fitted" --set "Platens/Bonded=true" \
+    platens-wide-fitted-bonded) study platens-wide-fitted-bonded $ucs "${steel[@]}" "${fitted[@]}" \
+                    --set "Platens/Bonded=true" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    # every spacing with every platen mesh (the default softening)
-    platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs --set "Platens/Model=elastic" \
-                    --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller" \
-                    --set "SPH/Particle arrangement=body-fitted" \
-                    --vary "Platens/Element size=0.01,0.005,0.0025" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }

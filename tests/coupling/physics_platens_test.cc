@@ -51,7 +51,7 @@ namespace
   {
     fem::BodyGeometry g;
     g.shape     = fem::BodyShape::cylinder;
-    g.diameter  = c.platens.diameter > 0 ? c.platens.diameter : 1.2 * c.diameter;
+    g.diameter  = cylinder_platen_diameter(c);
     g.thickness = c.platens.thickness;
     g.side      = fem::BodySide::below;
     g.contact_z = 0.0;
