@@ -121,7 +121,8 @@ namespace coupling
 
   ContactParticles OwnedParticles::pack(const sph::Body<3> &body, const sph::Domain &domain,
                                         const std::vector<double> *force,
-                                        const std::vector<double> *deformation)
+                                        const std::vector<double> *deformation,
+                                        const std::vector<double> *self_gradient)
   {
     const auto &owned = domain.owned_indices();
     const auto &x     = body.positions();
@@ -137,10 +138,13 @@ namespace coupling
         particles.force = force->data() + 3 * b;
       if (deformation)
         particles.deformation = deformation->data() + 9 * b;
+      if (self_gradient)
+        particles.self_gradient = self_gradient->data() + 3 * b;
       return particles;
     }
     f_.resize(force ? x_.size() : 0);
     F_.resize(deformation ? 9 * owned.size() : 0);
+    g_.resize(self_gradient ? 3 * owned.size() : 0);
     if (deformation)
       for (std::size_t k = 0; k < owned.size(); ++k)
         for (int c = 0; c < 9; ++c)
@@ -152,12 +156,16 @@ namespace coupling
         v_[3 * k + d] = v[owned[k]][d];
         if (force)
           f_[3 * k + d] = (*force)[3 * owned[k] + d];
+        if (self_gradient)
+          g_[3 * k + d] = (*self_gradient)[3 * owned[k] + d];
       }
     ContactParticles particles{x_.data(), v_.data(), m_.data(), owned.size()};
     if (force)
       particles.force = f_.data();
     if (deformation)
       particles.deformation = F_.data();
+    if (self_gradient)
+      particles.self_gradient = g_.data();
     return particles;
   }
 

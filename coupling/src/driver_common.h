@@ -97,13 +97,15 @@ namespace coupling
     /// particle [N]), theirs of it as ContactParticles::force. Valid until the next pack (and
     /// while the body's arrays stay in place: owned particles in one run of local indices are
     /// not copied but pointed at).
-    /// `deformation` (9 per local particle), theirs of it as ContactParticles::deformation.
+    /// `deformation` (9 per local particle), theirs of it as ContactParticles::deformation;
+    /// `self_gradient` (3 per local particle) as ContactParticles::self_gradient.
     ContactParticles pack(const sph::Body<3> &body, const sph::Domain &domain,
                           const std::vector<double> *force = nullptr,
-                          const std::vector<double> *deformation = nullptr);
+                          const std::vector<double> *deformation = nullptr,
+                          const std::vector<double> *self_gradient = nullptr);
 
   private:
-    std::vector<double> x_, v_, m_, f_, F_;
+    std::vector<double> x_, v_, m_, f_, F_, g_;
   };
 
   /// Adds the contact forces `force` [N] (3 per particle: of every particle, or with `domain` of

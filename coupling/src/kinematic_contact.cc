@@ -13,7 +13,9 @@
 /// contacts are then corrected together (projected Jacobi sweeps, see step 3) until each ends
 /// the step on the moved face. A rigid master has no mass: m_eff is the particle's, and one pass
 /// is exact. A particle is held at r (n . F n) from the face, its half cell straining with it
-/// (ContactParticles::deformation). The tangential force that would stop the relative sliding over the
+/// (ContactParticles::deformation), taken at the step's end: n . F n moves with the particle's own
+/// normal move (ContactParticles::self_gradient), which the end gap and the normal effective
+/// mass, 1 / (sum_a w_a^2 / m_a,share + (1 - Contact::stretch_slope) / m_particle), include. The tangential force that would stop the relative sliding over the
 /// step, f_t* = -m_eff v_t* / dt, is applied while |f_t*| <= mu_s f_n (stick), else
 /// mu_d f_n along it (slip); sliding continues while |f_t*| > mu_d f_n. A bonded interface ties a
 /// particle once it has touched: normal and tangential forces without limit, tension included.
@@ -114,11 +116,14 @@ namespace coupling
       list.clear();
     // per contact: v* of the particle minus the contact point's [m/s]
     std::vector<std::vector<V3>> predicted(contacts_.size());
+    // per contact: the particle's own v* [m/s] (its move in the step strains its half cell)
+    std::vector<std::vector<V3>> predicted_own(contacts_.size());
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), nt = omp_get_num_threads();
       std::vector<Contact> &mine     = contacts_[t];
       std::vector<V3> &motion = predicted[t];
+      std::vector<V3> &own    = predicted_own[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
         FrictionState &fr = friction_[i];
@@ -149,19 +154,26 @@ namespace coupling
             for (int b = 0; b < 3; ++b)
               stretch += nn[a] * F[3 * a + b] * nn[b];
           c.hit.gap += prm_.radius * (1.0 - stretch);
+          // the stretch at the step's end: its change with the particle's own normal move,
+          // d(n . F n) = -(n . dx)(n . g); a particle whose stretch would fall as it nears the face
+          // (none at a face: g points into the body) is held at the lagged distance
+          if (pt.self_gradient)
+            c.stretch_slope = std::min(0.0, -prm_.radius * dot(nn, V3{pt.self_gradient[3 * i], pt.self_gradient[3 * i + 1],
+                                                                        pt.self_gradient[3 * i + 2]}));
         }
         // the contact point's velocity: the patch's mean, with the weights the force is shared by
         V3 vm{0, 0, 0};
         for (int a = 0; a < c.n_nodes; ++a)
           for (int d = 0; d < 3; ++d)
             vm[d] += c.weight[a] * s.velocity[3 * c.node[a] + d];
-        V3 vr;
+        V3 vr, vp;
         for (int d = 0; d < 3; ++d)
         {
           const double f = pt.force ? pt.force[3 * i + d] : 0.0;
-          vr[d]          = pt.velocity[3 * i + d] + dt * f / pt.mass[i] - vm[d];
+          vp[d]          = pt.velocity[3 * i + d] + dt * f / pt.mass[i];
+          vr[d]          = vp[d] - vm[d];
         }
-        const double g = c.hit.gap + dt * dot(vr, c.hit.normal);
+        const double g = c.hit.gap + dt * dot(vr, c.hit.normal) - c.stretch_slope * dt * dot(vp, c.hit.normal);
         // a bond forms where the particle touches the face (at the start: the end layers at gap 0)
         const bool touches = g < 0 || (prm_.bonded && (fr.tied || c.hit.gap <= 0));
         if (!touches)
@@ -171,6 +183,7 @@ namespace coupling
         }
         mine.push_back(c);
         motion.push_back(vr);
+        own.push_back(vp);
       }
     }
 
@@ -194,15 +207,18 @@ namespace coupling
     //    so the sweeps converge; a uniform push converges in one), until every end gap and stuck
     //    slip is below ContactParameters::tolerance (1e-6) of the contact radius.
     std::vector<Contact *> all;
-    std::vector<const V3 *> motion;
+    std::vector<const V3 *> motion, motion_own;
     for (std::size_t t = 0; t < contacts_.size(); ++t)
       for (std::size_t k = 0; k < contacts_[t].size(); ++k)
       {
         all.push_back(&contacts_[t][k]);
         motion.push_back(&predicted[t][k]);
+        motion_own.push_back(&predicted_own[t][k]);
       }
     const std::size_t n_all = all.size();
-    std::vector<double> m_eff(n_all);
+    // m_eff: tangential; m_eff_normal: the particle's share (1 - stretch_slope) / m, its own move
+    // also moving the distance it is held at
+    std::vector<double> m_eff(n_all), m_eff_normal(n_all);
     for (std::size_t k = 0; k < n_all; ++k)
     {
       const Contact &c    = *all[k];
@@ -214,7 +230,8 @@ namespace coupling
         if (m > 0 && c.weight[a] > 0)
           inverse_mass += c.weight[a] * node_weight_[node] / m; // w^2 / (m w / sum w)
       }
-      m_eff[k] = 1.0 / inverse_mass;
+      m_eff[k]        = 1.0 / inverse_mass;
+      m_eff_normal[k] = 1.0 / (inverse_mass - c.stretch_slope / pt.mass[c.particle]);
     }
     // the force that the correction `trial` asks for, within the interface's law: no pull unless
     // bonded, the tangential part within mu f_n (the static limit unless the particle slid in
@@ -243,16 +260,23 @@ namespace coupling
     };
     std::vector<char> slid(n_all, 0);
     std::vector<V3> moved(n_all); // D_k
+    std::vector<double> moved_own(n_all); // n_k . the particle's own move over the step
+    // the end gap of contact k for the relative motion d and the particle's own normal move
+    auto end_gap = [&](const std::size_t k, const double dn, const double own_n) {
+      return all[k]->hit.gap + dn - all[k]->stretch_slope * own_n;
+    };
     // the correction of contact k for the relative motion `d` it would make: close the end gap
     // and, unless it slides, stop the tangential motion
     auto correct = [&](const std::size_t k, const V3 &force, const V3 &d) {
       const Hit &hit  = all[k]->hit;
       const auto &nrm = hit.normal;
-      const double dn = dot(d, nrm);
-      const double c  = m_eff[k] / (dt * dt);
+      const double dn  = dot(d, nrm);
+      const double c   = m_eff[k] / (dt * dt);
+      const double cn  = m_eff_normal[k] / (dt * dt);
+      const double end = end_gap(k, dn, moved_own[k]);
       V3 trial;
       for (int d_ = 0; d_ < 3; ++d_)
-        trial[d_] = force[d_] - c * ((hit.gap + dn) * nrm[d_] + (d[d_] - dn * nrm[d_]));
+        trial[d_] = force[d_] - c * (end * nrm[d_] + (d[d_] - dn * nrm[d_])) - (cn - c) * end * nrm[d_];
       bool s_ = false;
       const V3 f = project(k, trial, s_);
       slid[k]    = s_;
@@ -263,6 +287,7 @@ namespace coupling
     {
       const V3 &vr = *motion[k];
       moved[k]     = {dt * vr[0], dt * vr[1], dt * vr[2]};
+      moved_own[k] = dt * dot(*motion_own[k], all[k]->hit.normal);
       all[k]->force = correct(k, {0, 0, 0}, moved[k]);
     }
     // D_k for the current forces
@@ -288,6 +313,8 @@ namespace coupling
         const double mp = pt.mass[all[k]->particle];
         for (int d = 0; d < 3; ++d)
           moved[k][d] = dt * vr[d] + dt * dt * all[k]->force[d] / mp;
+        moved_own[k] = dot(*motion_own[k], all[k]->hit.normal) * dt +
+                       dt * dt * dot(all[k]->force, all[k]->hit.normal) / mp;
         if (deformable)
           for (int a = 0; a < all[k]->n_nodes; ++a)
           {
@@ -310,7 +337,7 @@ namespace coupling
         {
           const Hit &hit   = all[k]->hit;
           const double dn  = dot(moved[k], hit.normal);
-          const double end = hit.gap + dn;
+          const double end = end_gap(k, dn, moved_own[k]);
           const double fn  = dot(all[k]->force, hit.normal);
           // the end gap where there is a force (or the particle would end inside)
           if (fn != 0 || end < 0)

@@ -543,9 +543,14 @@ namespace coupling
             deformation_[9 * i + 3 * a + b] = F(a, b);
       }
       particles.deformation = deformation_.data();
+      // the reference kernel gradients do not change: once
+      if (self_gradient_.empty())
+        for (const auto &g : body_->self_gradients())
+          self_gradient_.insert(self_gradient_.end(), {g[0], g[1], g[2]});
+      particles.self_gradient = self_gradient_.data();
     }
     if (domain_) // the owned particles only, packed
-      particles = kinematic ? owned_.pack(*body_, *domain_, &force_before_contact_, &deformation_)
+      particles = kinematic ? owned_.pack(*body_, *domain_, &force_before_contact_, &deformation_, &self_gradient_)
                             : owned_.pack(*body_, *domain_);
     std::fill(force_on_particles_.begin(), force_on_particles_.end(), 0.0);
     std::fill(force_on_top_.begin(), force_on_top_.end(), 0.0);

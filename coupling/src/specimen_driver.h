@@ -136,6 +136,7 @@ namespace coupling
     double gauge_length0_ = 0;
     std::vector<double> force_before_contact_; ///< kinematic contact: f_int + f_pressure + f_ext [N]
     std::vector<double> deformation_;          ///< kinematic contact: each particle's F, row-major [-]
+    std::vector<double> self_gradient_;        ///< kinematic contact: sph::Body::self_gradients, flat [1/m]
     std::vector<double> force_on_particles_, force_on_top_, force_on_bottom_;
     // the stop criterion's state, members so that a checkpoint holds them
     double peak_force_ = 0;

@@ -550,6 +550,26 @@ namespace sph
   }
 
   template <int dim>
+  std::vector<Vector<dim>> Body<dim>::self_gradients() const
+  {
+    std::vector<Vector<dim>> g(p_.size(), Vector<dim>::Zero());
+    if (!total_lagrangian())
+      return g;
+    // A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij: d A_i / d x_i = -I (x) sum_j V0_j grad_i W_ij,
+    // grad_j W_ji = -grad_i W_ij for the second particle of a pair
+    for (std::size_t p = 0; p < pairs_.n_pairs(); ++p)
+      {
+        const std::int32_t i = pairs_.first[p], j = pairs_.second[p];
+        g[i] += p_.volume0[j] * grad_w_[p];
+        g[j] -= p_.volume0[i] * grad_w_[p];
+      }
+    // F = A L^T: d F / d x_i = -I (x) L_i s_i
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      g[i] = p_.L[i] * g[i];
+    return g;
+  }
+
+  template <int dim>
   void Body<dim>::update_stress_total_lagrangian()
   {
     // F_i = A_i L_i^T, A_i = sum_j V0_j (x_j - x_i) (x) grad_i W_ij: the pair (i, j) adds

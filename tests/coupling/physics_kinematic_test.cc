@@ -274,10 +274,11 @@ TEST(CoupledKinematic, BondedElasticPlatensGiveTheFeReferencePeakAndEndFace)
   const double rms        = end_face_rms(face, coupled, r, 0.5 * p.diameter);
   std::cout << "[elastic bonded] coupled " << coupled / 1e6 << " MPa, reference " << r.peak_stress / 1e6
             << " MPa; end face at half the peak: RMS " << rms << "\n";
-  // 2 %: the interface's target against the reference; measured 270.73 against 268.99 MPa
-  // (+0.6 %; 270.64 before the contact points were mapped, ContactParameters::face_radius_mapped)
+  // 2 %: the interface's target against the reference; measured 273.36 against 268.99 MPa
+  // (+1.6 %; 270.73 with the held distance lagged a step, 270.64 before the contact points were
+  // mapped, ContactParameters::face_radius_mapped)
   EXPECT_NEAR(coupled / r.peak_stress, 1.0, 0.02);
-  // 5 % RMS over the face, as with rigid bonded ends (the test above); measured 3.0 % (2.3 %
+  // 5 % RMS over the face, as with rigid bonded ends (the test above); measured 3.1 % (2.3 %
   // before the contact points were mapped)
   EXPECT_LT(rms, 0.05);
 }
@@ -346,10 +347,10 @@ TEST(CoupledKinematic, ASofteningRockOnElasticPlatensOfItsDiameterReachesTheClos
   std::cout << "[rollers, softening] peak " << s.peak_stress / 1e6 << " MPa, first failure "
             << extra(s, "failure_onset_stress_MPa") << " MPa, platen modulus " << s.platen_modulus / 1e9 << " GPa\n";
   // 1 %: the UCS target against the closed form (rigid platens give 282.9 MPa on this
-  // rock, +0.25 %); measured 282.45 MPa, +0.09 %
+  // rock, +0.25 %); measured 282.42 MPa, +0.08 %
   EXPECT_NEAR(s.peak_stress / closed_form_ucs(), 1.0, 0.01);
   // the first failure near the strength, not in the end layer at 0.7 of it: 0.85 (measured
-  // 0.92)
+  // 0.93)
   EXPECT_GT(extra(s, "failure_onset_stress_MPa") * 1e6, 0.85 * closed_form_ucs());
   const double series =
     1.0 / (1.0 / s.youngs_modulus + 2.0 * p.platens.thickness / (p.length * p.platens.steel.youngs_modulus));
@@ -392,7 +393,7 @@ TEST(CoupledKinematic, TheJointSolutionsToleranceTimesAndOverFourKeepsTheResult)
   // the patch points, its other setting, in the next test).
   // UCS on elastic platens at 5 mm (for time), the tolerance x4 and /4: the peak must move by
   // less than 0.5 % and the platen-read modulus by less than 1 % (the interface's targets;
-  // measured on 60 mm platens 0.031 % and 0.001 %)
+  // measured on 60 mm platens 0.019 % and 0.006 %)
   expect_result_kept({"Platens/Model=elastic", "SPH/Particle spacing=0.005"}, "Platens/Contact tolerance", "1e-6",
                      {"4e-6", "2.5e-7"});
 }
@@ -403,12 +404,45 @@ TEST(CoupledKinematic, TheContactPatchIsConvergedAtItsDefaultPoints)
   // N x N points (4 on cylinder platens). The softening rock on elastic platens of its diameter
   // (the case that needs the patch), body-fitted, at 5 mm (for time): N x 4 = 16 and N / 2 = 2
   // must move the peak by less than 0.5 % and the platen-read modulus by less than 1 % (the
-  // interface's targets; measured 280.22 / 280.94 / 280.96 MPa at 2 / 4 / 16, -0.26 % and
-  // +0.006 %; the modulus 80.053 GPa within 0.01 %). N = 1 is no patch but a point load, which
+  // interface's targets; measured 280.93 / 281.41 / 281.42 MPa at 2 / 4 / 16, -0.17 % and
+  // +0.002 %; the modulus 80.052 GPa within 0.01 %). N = 1 is no patch but a point load, which
   // aliases against the mesh (2.5 mm, cases/studies/platens/README.md: 272.3 against 283.0
   // MPa): the patch is part of the formulation, as the loaded-face correction is, and is not
   // varied below 2.
   expect_result_kept({"Platens/Model=elastic", "Platens/Diameter=0.05", "Platens/Loaded face=roller",
                       "SPH/Particle arrangement=body-fitted", "SPH/Particle spacing=0.005", "Loading/End strain=0.005"},
                      "Platens/Contact patch points", "4", {"2", "16"});
+}
+
+TEST(CoupledKinematic, PlatenElementsHalfTheSpacingStayStable)
+{
+  // Face nodes lighter than the particle (5 mm particles on 2.5 mm elements: a node carries a
+  // sixth of a particle's mass) follow the distance the particle is held at, r (n . F n). Taken
+  // from the step before, that distance moved with the particle's own position a step late
+  // (a gain of about 1.5 at a face) and the end layer and the face rang up: an elastic rock
+  // reached a kinetic energy of 1.1e-2 of its internal energy by a strain of 0.003 and "failed"
+  // at 259.8 MPa. Held at the step's end (ContactParticles::self_gradient) it stays quasi-static.
+  // (`cosim` still refuses elements finer than the particles: stable, their end layer fails
+  // early, app/src/case_file.cc; the test sets them past the case reader.)
+  CaseParameters p = kinematic_case(
+    "ucs/ucs.prm", {"Platens/Model=elastic", "Platens/Diameter=0.05", "Platens/Loaded face=roller",
+                    "SPH/Particle arrangement=body-fitted", "SPH/Particle spacing=0.005",
+                    "Rock/Model=elastic", "Loading/End strain=0.003"});
+  p.platens.element_size_from_spacing = false;
+  p.platens.steel.element_size        = 0.0025;
+  RunObserver quiet;
+  const Summary s = run_case(p, quiet);
+  std::cout << "[elements of half the spacing] kinetic / internal " << s.max_kinetic_to_internal_energy
+            << ", platen modulus " << s.platen_modulus / 1e9 << " GPa, energy balance " << s.energy_balance_error
+            << "\n";
+  EXPECT_EQ(s.stop_reason, "end strain");
+  // measured 5.6e-6; 1e-4 is the order of the quasi-static runs' (1.4e-5 for the softening rock
+  // on these elements), a hundredth of the unstable run's
+  EXPECT_LT(s.max_kinetic_to_internal_energy, 1e-4);
+  const double series =
+    1.0 / (1.0 / s.youngs_modulus + 2.0 * p.platens.thickness / (p.length * p.platens.steel.youngs_modulus));
+  // 1 %: the interface's modulus target; measured 81.26 GPa
+  EXPECT_NEAR(s.platen_modulus / series, 1.0, 0.01);
+  // 1 %: the interface's energy target; measured 0.49 %
+  EXPECT_LT(s.energy_balance_error, 0.01);
 }

@@ -91,6 +91,62 @@ namespace
       }
   }
 
+  TEST(SphCorrection, SelfGradientIsHowAParticlesOwnMoveChangesItsF)
+  {
+    // F_i is linear in the positions: moving particle i alone by d changes its F by exactly
+    // -d (x) g_i (Body::self_gradients), at the surface and inside (1e-10: round-off on F's
+    // entries of order 1); g vanishes inside a full neighbourhood and points into the body at a
+    // face (the top face's particles: g_z < 0, of the order of 1 / spacing)
+    for (const Formulation form :
+         {Formulation::total_lagrangian_corrected, Formulation::total_lagrangian})
+      {
+        const double     dx  = 0.002;
+        const Lattice<3> lat = make_cylinder<3>(0.02, 0.03, dx);
+        std::size_t top = 0, inside = 0;
+        Vector<3>   centre = Vector<3>::Zero();
+        for (const Vector<3> &x : lat.positions)
+          centre += x / static_cast<double>(lat.positions.size());
+        for (std::size_t i = 0; i < lat.positions.size(); ++i)
+          {
+            const Vector<3> &x = lat.positions[i];
+            if (x[2] > lat.positions[top][2] + 1e-12 || (x[2] > lat.positions[top][2] - 1e-12 &&
+                                                        x.head<2>().norm() < lat.positions[top].head<2>().norm()))
+              top = i;
+            if ((x - centre).norm() < (lat.positions[inside] - centre).norm())
+              inside = i;
+          }
+        for (const std::size_t i : {top, inside})
+          {
+            Body<3> body(numerics(form, dx), elastic_rock(), lat.positions, lat.volumes);
+            const Vector<3> g = body.self_gradients()[i];
+            const Vector<3> d(1e-6, -2e-6, 3e-6);
+            const double    dt = 1e-3;
+            body.compute_forces();
+            for (unsigned k = 0; k < body.n_particles(); ++k)
+              body.external_forces()[k] = -body.internal_forces()[k];
+            body.set_velocity(static_cast<unsigned>(i), d / dt);
+            body.integrate(dt);
+            body.compute_forces();
+            const Tensor<3> expected = Tensor<3>::Identity() - d * g.transpose();
+            EXPECT_LT((body.deformation_gradient(static_cast<unsigned>(i)) - expected).cwiseAbs().maxCoeff(), 1e-10)
+              << "FORM " << static_cast<int>(form) << ", particle " << i;
+            if (i == inside)
+              EXPECT_LT(g.norm() * dx, 1e-9) << "FORM " << static_cast<int>(form);
+            else
+              {
+                EXPECT_LT(g[2] * dx, -0.5) << "FORM " << static_cast<int>(form);
+                EXPECT_LT(g.head<2>().norm() * dx, 1e-9) << "FORM " << static_cast<int>(form);
+              }
+          }
+      }
+    // the updated Lagrangian forms integrate F from the velocity gradient: no such term
+    const Lattice<3> lat = make_cylinder<3>(0.02, 0.03, 0.002);
+    Body<3> body(numerics(Formulation::updated_lagrangian_corrected, 0.002), elastic_rock(), lat.positions,
+                 lat.volumes);
+    for (const Vector<3> &g : body.self_gradients())
+      EXPECT_EQ(g.norm(), 0.0);
+  }
+
   TEST(SphCorrection, LinearVelocityGradientExactUpdatedLagrangian)
   {
     // FORM 1: the velocity gradient of a linear field is exact at every particle, so a uniform

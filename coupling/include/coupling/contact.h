@@ -58,6 +58,11 @@ namespace coupling
     /// half cell between its centre and the face strains with it. Without it the end layer's half
     /// cells are rigid and the platens read E L / (L - dx) of a specimen of length L.
     const double *deformation = nullptr;
+    /// With `deformation`, how each particle's F moves with its own position, 3 per particle
+    /// (sph::Body::self_gradients: dF = -dx (x) g) [1/m] (optional): the held distance is then
+    /// taken at the step's end, the particle's own move in the step included, not lagged a step
+    /// (a face lighter than the particle would follow the lagged target and grow unstable)
+    const double *self_gradient = nullptr;
   };
 
   /// How the interface enforces contact.
@@ -303,6 +308,9 @@ namespace coupling
       /// hit's four, or on a deformable face those of the contact patch (ContactParameters::
       /// patch_points)
       int n_nodes = 0;
+      /// kinematic: the held distance's change with the particle's own normal move over the
+      /// step, r d(n . F n) / d(n . x) (<= 0; 0 without ContactParticles::self_gradient) [-]
+      double stretch_slope = 0;
       std::array<unsigned int, max_patch_nodes> node{};
       std::array<double, max_patch_nodes> weight{};
     };

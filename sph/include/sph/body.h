@@ -163,6 +163,13 @@ namespace sph
 
     /// tssfac * min_i h_i / (c + |v_i|) [s], c the P-wave speed sqrt((K + 4G/3)/rho).
     double stable_time_step() const;
+
+    /// How each particle's deformation gradient moves with its own position (total Lagrangian
+    /// forms): dF_i = -dx_i (x) g_i, g_i = L_i sum_j V0_j grad_i W_ij over the pairs in use (the
+    /// reference kernel gradients, so constant during a run). Zero in a full neighbourhood; at a
+    /// surface it points into the body (about 3 / spacing at a lattice face). Zero vectors in
+    /// the updated Lagrangian forms, whose F is integrated from the velocity gradient.
+    std::vector<Vector<dim>> self_gradients() const;
     /// Stress update to the current positions and all forces there (call once per step). A
     /// distributed body (restrict_to_owned) passes its domain: the ghosts' stress, F, P L and
     /// density from their owners between the two (collective; std::invalid_argument before
