@@ -131,3 +131,34 @@ TEST(ReferenceCylinder, ElasticSteelPlatensEndFaceConverges)
   // the steel platens are stiffer radially than the rock: the bonded face is confined
   EXPECT_GT(fine.end_face.front().radial_stress, 0.0);
 }
+
+TEST(ReferenceCylinder, WideElasticFreeSlipPlatensConvergeOnlyWithAssociatedFlow)
+{
+  // Steel platens 1.2 D wide (the default), frictionless: the peak of the case's rock (psi = 0,
+  // phi = 63.7 deg) falls with the mesh (measured 278.32 / 263.50 MPa on 4 / 8 elements per
+  // radius, Newton stalling at each), and so does the coupled solver's (cases/studies/platens).
+  // With associated flow (psi = phi) the uniform uniaxial stress is a statically admissible
+  // field below yield everywhere, so the limit load is at least the closed form, and the
+  // reference reaches it on every mesh (measured 282.193 MPa on 4 / 8 / 16): the spread comes
+  // from the non-associated flow rule, not from the rim.
+  CaseParameters p = ucs_case(sph::RockModel::mohr_coulomb);
+  const double ucs =
+    mohr_coulomb_axial_strength(p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
+  const auto peak = [&](const unsigned int mesh) {
+    const ReferenceResult r = run_reference_cylinder(
+      p, options(ReferenceInterface::free_slip, ReferencePlatens::elastic, mesh, 60, 0.006));
+    return std::make_pair(r.peak_stress, r.end_reason);
+  };
+  const auto [coarse, coarse_reason] = peak(4);
+  const auto [fine, fine_reason]     = peak(8);
+  // 3 %: the measured spread is 5.3 %; a converged pair would differ by far less than 1 %
+  EXPECT_GT(std::abs(coarse - fine), 0.03 * ucs);
+  p.rock.dilation_angle = p.rock.friction_angle;
+  for (const unsigned int mesh : {4u, 8u})
+  {
+    const auto [associated, reason] = peak(mesh);
+    // the limit load, to the Newton tolerance (1e-7 of the force) and the last increment
+    EXPECT_NEAR(associated, ucs, 1e-4 * ucs) << "mesh " << mesh;
+    EXPECT_EQ(reason.rfind("limit load", 0), 0u) << reason;
+  }
+}
