@@ -13,11 +13,12 @@
 /// contacts are then corrected together (projected Jacobi sweeps, see step 3) until each ends
 /// the step on the moved face. A rigid master has no mass: m_eff is the particle's, and one pass
 /// is exact. A particle is held at r (n . F n) from the face, its half cell straining with it
-/// (ContactParticles::deformation), taken at the step's end: n . F n moves with the particle's own
-/// normal move (ContactParticles::self_gradient), which the end gap and the normal effective
-/// mass, 1 / (sum_a w_a^2 / m_a,share + (1 - Contact::stretch_slope) / m_particle), include. The tangential force that would stop the relative sliding over the
-/// step, f_t* = -m_eff v_t* / dt, is applied while |f_t*| <= mu_s f_n (stick), else
-/// mu_d f_n along it (slip); sliding continues while |f_t*| > mu_d f_n. A bonded interface ties a
+/// (ContactParticles::deformation), taken at the step's end: n . F n moves with the particle's
+/// own normal move (ContactParticles::self_gradient), which the end gap and the normal effective
+/// mass, 1 / (sum_a w_a^2 / m_a,share + (1 - Contact::stretch_slope) / m_particle), include.
+/// The tangential force that would stop the relative sliding over the step,
+/// f_t* = -m_eff v_t* / dt, is applied while |f_t*| <= mu_s f_n (stick), else mu_d f_n along it
+/// (slip); sliding continues while |f_t*| > mu_d f_n. A bonded interface ties a
 /// particle once it has touched: normal and tangential forces without limit, tension included.
 /// Every pair force is applied once, with opposite signs on the particle and the face's nodes
 /// (shape-function weights summing to one), so momentum is exchanged exactly. There is no
@@ -158,8 +159,10 @@ namespace coupling
           // d(n . F n) = -(n . dx)(n . g); a particle whose stretch would fall as it nears the face
           // (none at a face: g points into the body) is held at the lagged distance
           if (pt.self_gradient)
-            c.stretch_slope = std::min(0.0, -prm_.radius * dot(nn, V3{pt.self_gradient[3 * i], pt.self_gradient[3 * i + 1],
-                                                                        pt.self_gradient[3 * i + 2]}));
+          {
+            const double *g = pt.self_gradient + 3 * i;
+            c.stretch_slope = std::min(0.0, -prm_.radius * dot(nn, V3{g[0], g[1], g[2]}));
+          }
         }
         // the contact point's velocity: the patch's mean, with the weights the force is shared by
         V3 vm{0, 0, 0};
@@ -173,7 +176,8 @@ namespace coupling
           vp[d]          = pt.velocity[3 * i + d] + dt * f / pt.mass[i];
           vr[d]          = vp[d] - vm[d];
         }
-        const double g = c.hit.gap + dt * dot(vr, c.hit.normal) - c.stretch_slope * dt * dot(vp, c.hit.normal);
+        const double g =
+          c.hit.gap + dt * dot(vr, c.hit.normal) - c.stretch_slope * dt * dot(vp, c.hit.normal);
         // a bond forms where the particle touches the face (at the start: the end layers at gap 0)
         const bool touches = g < 0 || (prm_.bonded && (fr.tied || c.hit.gap <= 0));
         if (!touches)
@@ -276,7 +280,8 @@ namespace coupling
       const double end = end_gap(k, dn, moved_own[k]);
       V3 trial;
       for (int d_ = 0; d_ < 3; ++d_)
-        trial[d_] = force[d_] - c * (end * nrm[d_] + (d[d_] - dn * nrm[d_])) - (cn - c) * end * nrm[d_];
+        trial[d_] =
+          force[d_] - c * (end * nrm[d_] + (d[d_] - dn * nrm[d_])) - (cn - c) * end * nrm[d_];
       bool s_ = false;
       const V3 f = project(k, trial, s_);
       slid[k]    = s_;
