@@ -167,7 +167,7 @@ namespace sph
     /// How each particle's deformation gradient moves with its own position (total Lagrangian
     /// forms): dF_i = -dx_i (x) g_i, g_i = L_i sum_j V0_j grad_i W_ij over the pairs in use (the
     /// reference kernel gradients, so constant during a run). Zero in a full neighbourhood; at a
-    /// surface it points into the body (about 3 / spacing at a lattice face). Zero vectors in
+    /// surface it points into the body (0.96 / spacing at a lattice face, FORM 8). Zero vectors in
     /// the updated Lagrangian forms, whose F is integrated from the velocity gradient.
     std::vector<Vector<dim>> self_gradients() const;
     /// Stress update to the current positions and all forces there (call once per step). A
