@@ -62,6 +62,11 @@ run() {
                     --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
     platens-ucs-bonded) study platens-ucs-bonded $ucs --set "Platens/Bonded=true" \
                     --vary "Platens/Model=rigid,elastic" --vary "Test/Length=0.05,0.1,0.125" ;;
+    # rigid platens on the body-fitted specimen (its side round: no staircase at the platen's rim)
+    platens-ucs-fitted) study platens-ucs-fitted $ucs "${fitted[@]}" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
+    platens-ucs-fitted-bonded) study platens-ucs-fitted-bonded $ucs "${fitted[@]}" --set "Platens/Bonded=true" \
+                    --vary "Test/Length=0.05,0.1,0.125" ;;
     platens-bts)  study platens-bts $bts --vary "Platens/Model=rigid,elastic" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
     platens-bts-bonded) study platens-bts-bonded $bts --set "Platens/Bonded=true" \
@@ -183,7 +188,7 @@ run() {
 
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
-     platens-ucs platens-ucs-bonded platens-bts platens-bts-bonded basalt-bts-compliance
+     platens-ucs platens-ucs-bonded platens-ucs-fitted platens-ucs-fitted-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm
