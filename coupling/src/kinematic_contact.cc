@@ -117,14 +117,11 @@ namespace coupling
       list.clear();
     // per contact: v* of the particle minus the contact point's [m/s]
     std::vector<std::vector<V3>> predicted(contacts_.size());
-    // per contact: the particle's own v* [m/s] (its move in the step strains its half cell)
-    std::vector<std::vector<V3>> predicted_own(contacts_.size());
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), nt = omp_get_num_threads();
       std::vector<Contact> &mine     = contacts_[t];
       std::vector<V3> &motion = predicted[t];
-      std::vector<V3> &own    = predicted_own[t];
       for (long i = n * t / nt; i < n * (t + 1) / nt; ++i)
       {
         FrictionState &fr = friction_[i];
@@ -176,8 +173,8 @@ namespace coupling
           vp[d]          = pt.velocity[3 * i + d] + dt * f / pt.mass[i];
           vr[d]          = vp[d] - vm[d];
         }
-        const double g =
-          c.hit.gap + dt * dot(vr, c.hit.normal) - c.stretch_slope * dt * dot(vp, c.hit.normal);
+        c.own_speed    = dot(vp, c.hit.normal);
+        const double g = c.hit.gap + dt * dot(vr, c.hit.normal) - c.stretch_slope * dt * c.own_speed;
         // a bond forms where the particle touches the face (at the start: the end layers at gap 0)
         const bool touches = g < 0 || (prm_.bonded && (fr.tied || c.hit.gap <= 0));
         if (!touches)
@@ -187,7 +184,6 @@ namespace coupling
         }
         mine.push_back(c);
         motion.push_back(vr);
-        own.push_back(vp);
       }
     }
 
@@ -211,13 +207,12 @@ namespace coupling
     //    so the sweeps converge; a uniform push converges in one), until every end gap and stuck
     //    slip is below ContactParameters::tolerance (1e-6) of the contact radius.
     std::vector<Contact *> all;
-    std::vector<const V3 *> motion, motion_own;
+    std::vector<const V3 *> motion;
     for (std::size_t t = 0; t < contacts_.size(); ++t)
       for (std::size_t k = 0; k < contacts_[t].size(); ++k)
       {
         all.push_back(&contacts_[t][k]);
         motion.push_back(&predicted[t][k]);
-        motion_own.push_back(&predicted_own[t][k]);
       }
     const std::size_t n_all = all.size();
     // m_eff: tangential; m_eff_normal: the particle's share (1 - stretch_slope) / m, its own move
@@ -280,8 +275,7 @@ namespace coupling
       const double end = end_gap(k, dn, moved_own[k]);
       V3 trial;
       for (int d_ = 0; d_ < 3; ++d_)
-        trial[d_] =
-          force[d_] - c * (end * nrm[d_] + (d[d_] - dn * nrm[d_])) - (cn - c) * end * nrm[d_];
+        trial[d_] = force[d_] - cn * end * nrm[d_] - c * (d[d_] - dn * nrm[d_]);
       bool s_ = false;
       const V3 f = project(k, trial, s_);
       slid[k]    = s_;
@@ -292,7 +286,7 @@ namespace coupling
     {
       const V3 &vr = *motion[k];
       moved[k]     = {dt * vr[0], dt * vr[1], dt * vr[2]};
-      moved_own[k] = dt * dot(*motion_own[k], all[k]->hit.normal);
+      moved_own[k] = dt * all[k]->own_speed;
       all[k]->force = correct(k, {0, 0, 0}, moved[k]);
     }
     // D_k for the current forces
@@ -318,8 +312,7 @@ namespace coupling
         const double mp = pt.mass[all[k]->particle];
         for (int d = 0; d < 3; ++d)
           moved[k][d] = dt * vr[d] + dt * dt * all[k]->force[d] / mp;
-        moved_own[k] = dot(*motion_own[k], all[k]->hit.normal) * dt +
-                       dt * dt * dot(all[k]->force, all[k]->hit.normal) / mp;
+        moved_own[k] = dt * all[k]->own_speed + dt * dt * dot(all[k]->force, all[k]->hit.normal) / mp;
         if (deformable)
           for (int a = 0; a < all[k]->n_nodes; ++a)
           {

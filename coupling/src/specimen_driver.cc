@@ -202,7 +202,7 @@ namespace coupling
     if (bts_)
     {
       g.size_x = prm_.platens.diameter > 0 ? prm_.platens.diameter : 0.6 * prm_.diameter;
-      // 5 mm past each face of the disc, whatever the spacing (a size of the machine's)
+      // 5 mm past each face of the disc, whatever the spacing (a platen's size, not the mesh's)
       g.size_y = prm_.length + 0.01;
       if (prm_.platens.shape == "jaw")
       {

@@ -421,7 +421,8 @@ TEST(CoupledKinematic, PlatenElementsHalfTheSpacingStayStable)
   // from the step before, that distance moved with the particle's own position a step late
   // (by half the particle's own move at a lattice face) and the end layer and the face rang up:
   // an elastic rock reached a kinetic energy of 1.1e-2 of its internal energy by a strain of
-  // 0.003 and "failed" at 259.8 MPa. Held at the step's end (ContactParticles::self_gradient) it stays quasi-static.
+  // 0.003 and "failed" at 259.8 MPa. Held at the step's end (ContactParticles::self_gradient)
+  // it stays quasi-static.
   // (`cosim` still refuses elements finer than the particles: stable, their end layer fails
   // early, app/src/case_file.cc; the test sets them past the case reader.)
   CaseParameters p = kinematic_case(

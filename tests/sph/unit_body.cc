@@ -95,8 +95,10 @@ namespace
   {
     // F_i is linear in the positions: moving particle i alone by d changes its F by exactly
     // -d (x) g_i (Body::self_gradients), at the surface and inside (1e-10: round-off on F's
-    // entries of order 1); g vanishes inside a full neighbourhood and points into the body at a
-    // face (the top face's particles: g_z < 0, of the order of 1 / spacing)
+    // entries of order 1); g vanishes inside a full neighbourhood (1e-9 / spacing: the round-off
+    // of sums of order 1 / spacing) and points into the body at a face: at the top face's centre
+    // g_z dx = -0.958 (both forms), asserted below -0.5, half of it, far from the 0 a missing
+    // surface term would give; its lateral part vanishes by symmetry
     for (const Formulation form :
          {Formulation::total_lagrangian_corrected, Formulation::total_lagrangian})
       {

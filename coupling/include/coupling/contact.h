@@ -311,6 +311,8 @@ namespace coupling
       /// kinematic: the held distance's change with the particle's own normal move over the
       /// step, r d(n . F n) / d(n . x) (<= 0; 0 without ContactParticles::self_gradient) [-]
       double stretch_slope = 0;
+      /// kinematic: the particle's predicted velocity along the normal, n . (v + dt f / m) [m/s]
+      double own_speed = 0;
       std::array<unsigned int, max_patch_nodes> node{};
       std::array<double, max_patch_nodes> weight{};
     };
