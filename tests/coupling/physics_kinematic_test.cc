@@ -333,9 +333,9 @@ TEST(CoupledKinematic, ElasticPlatensOfTheSpecimensDiameterOnRollersGiveTheUniax
 TEST(CoupledKinematic, ASofteningRockOnElasticPlatensOfItsDiameterReachesTheClosedForm)
 {
   // The same test with the default strain-softening rock, whose end layer fails at the first
-  // particle the steel loads unevenly (Mohr-Coulomb's q = 14 at phi 63.7 deg turns 1 % of
-  // lateral tension into 14 % less strength): the steel face must stay flat to a small fraction
-  // of a micrometre under the end layer. The specimen is body-fitted (its side round, no
+  // particle the steel loads unevenly (Mohr-Coulomb's N = (1 + sin phi) / (1 - sin phi) = 18.3 at
+  // phi 63.7 deg turns 1 % of lateral tension into 18 % less strength): the steel face must stay
+  // flat to a small fraction of a micrometre under the end layer. The specimen is body-fitted (its side round, no
   // staircase), 2.5 mm. Before the contact points were mapped (ContactParameters::face_radius_mapped,
   // rim_angles) and the patches sampled at 4 x 4 points, the same run gave 261.9 MPa (lattice)
   // and 262.5 (body-fitted), the first failure in the end layer at 0.69 of the strength.
