@@ -31,7 +31,8 @@ namespace app::keys
     s.add_enum("Particle arrangement", p.particle_arrangement, "lattice|body-fitted",
                {sph::ParticleArrangement::lattice, sph::ParticleArrangement::body_fitted},
                "UCS/CTCS cylinder, BTS disc: cell centres of a cubic lattice (staircase round surface) or "
-               "body-fitted rings (outer ring half a spacing inside the round surface)");
+               "body-fitted rings (outer ring half a spacing inside the round surface; a flattened disc's rings "
+               "pulled in along their radii onto its flats)");
     s.add<int>("Threads", n.n_threads, "threads of the run (SPH and coupling loops); 0 = all cores",
                [](int v) { return v >= 0 && v <= 4096; }, "must be in [0, 4096] (0 = all cores)");
     s.add_enum("Pair force precision", n.single_precision, "mixed|double", {true, false},

@@ -15,15 +15,14 @@ namespace app::keys
     s.add_degrees("Flat loading angle", p.flat_angle,
                   "BTS: loading angle 2 alpha of a flattened Brazilian disc [deg]: two flats 2 R sin(alpha) wide, "
                   "the platens on them, at any particle spacing (the reference study's disc rests on flats of 20 deg); "
-                  "0 = the round disc (a lattice disc then rests on flats of its outer rows, wider at coarser spacing)",
+                  "0 = the round disc (a lattice disc then rests on flats of its outer rows, wider at coarser spacing; "
+                  "a body-fitted one on a line)",
                   [](double v) { return v >= 0 && v <= 60; }, "must be in [0, 60] degrees");
     s.check("Flat loading angle", [&p]() {
       if (p.flat_angle == 0)
         return std::string();
       if (p.test != "BTS")
         return "is for Test/Type = BTS (this case is " + p.test + "); set it to 0";
-      if (p.particle_arrangement != sph::ParticleArrangement::lattice)
-        return std::string("needs SPH/Particle arrangement = lattice (body-fitted rings have no flats)");
       if (p.platens.shape != "flat")
         return std::string("needs Platens/Shape = flat (the flats rest on flat platens)");
       return std::string();

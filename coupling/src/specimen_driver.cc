@@ -127,7 +127,7 @@ namespace coupling
     const double dx   = prm_.sph.spacing;
     const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
     const sph::Lattice<3> lattice =
-      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx)
+      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle)
                      : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
            : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx)
                      : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));

@@ -3,6 +3,8 @@
 #include "lattice_detail.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace sph
 {
@@ -16,6 +18,7 @@ namespace sph
     struct RingPoint
     {
       double u, v, area;
+      double half_angle; ///< half the angle its annulus sector spans (the centre's: pi)
     };
 
     std::vector<RingPoint> ring_layer(const double R, const double dx, double &dr)
@@ -23,7 +26,7 @@ namespace sph
       const int n_rings = std::max(1, static_cast<int>(std::lround(R / dx - 0.5)));
       dr                = R / (n_rings + 0.5);
       std::vector<RingPoint> layer;
-      layer.push_back({0.0, 0.0, pi * 0.25 * dr * dr});
+      layer.push_back({0.0, 0.0, pi * 0.25 * dr * dr, pi});
       for (int k = 1; k <= n_rings; ++k)
         {
           const int    n_k   = 2 * std::max(1, static_cast<int>(std::lround(pi * k)));
@@ -32,11 +35,32 @@ namespace sph
           for (int j = 0; j < n_k; ++j)
             {
               const double theta = 2.0 * pi * j / n_k;
-              layer.push_back({r * std::sin(theta), r * std::cos(theta), annulus / n_k});
+              layer.push_back({r * std::sin(theta), r * std::cos(theta), annulus / n_k, pi / n_k});
             }
         }
       return layer;
     }
+
+    /// The Jacobian (rho / R)^2 of the flattening map, rho(theta) = min(R, R cos a / |cos theta|),
+    /// averaged over angles: its primitive is cos^2 a tan(theta) on the flat (|theta| <= a) and
+    /// grows by one per radian elsewhere, odd and rising by 2 G(pi/2) every pi.
+    struct FlattenedJacobian
+    {
+      double a;
+      double primitive(const double theta) const
+      {
+        const double half = std::sin(a) * std::cos(a) + (0.5 * pi - a); // G(pi / 2)
+        const double k    = std::floor((theta + 0.5 * pi) / pi);
+        const double u    = theta - k * pi, w = std::abs(u); // u in [-pi/2, pi/2)
+        const double g =
+          w <= a ? std::cos(a) * std::cos(a) * std::tan(w) : std::sin(a) * std::cos(a) + (w - a);
+        return 2 * k * half + (u < 0 ? -g : g);
+      }
+      double mean(const double lo, const double hi) const
+      {
+        return (primitive(hi) - primitive(lo)) / (hi - lo);
+      }
+    };
 
     /// `layer` stacked `n` times, `step` [m] apart: layer k's ring point p at place(k, p), its
     /// volume p's area times `step`.
@@ -77,26 +101,59 @@ namespace sph
     return out;
   }
 
-  Lattice<3> make_fitted_disc(const double D, const double t, const double dx)
+  Lattice<3> make_fitted_disc(const double D, const double t, const double dx,
+                              const double flat_angle)
   {
     check(D, "disc diameter");
     check(t, "disc thickness");
     check(dx, "particle spacing");
+    if (!(flat_angle >= 0 && flat_angle <= max_flat_angle))
+      throw std::invalid_argument("sph fitted disc: flat loading angle must be in [0, " +
+                                  std::to_string(max_flat_angle) + "] rad, got " +
+                                  std::to_string(flat_angle));
     Lattice<3> out;
     out.spacing    = dx;
     const double R = 0.5 * D;
     double       dr = 0;
-    const std::vector<RingPoint> layer = ring_layer(R, dx, dr);
+    std::vector<RingPoint> layer = ring_layer(R, dx, dr);
+    // flats at v = -+ R cos(alpha): the round layer pulled in along its radii onto the
+    // flattened boundary rho(theta) = min(R, R cos(alpha) / |cos theta|), theta from the load
+    // axis v. The map (r, theta) -> (r rho / R, theta) keeps every ring's particle on the
+    // loaded diameter and puts the outer ring's flat part on a line parallel to the flat,
+    // cos(alpha) dr / 2 inside it. Each particle's area is its annulus sector's image: the
+    // sector's area times the mean of the map's Jacobian (rho / R)^2 over the sector's angles,
+    // so the images tile the flattened face exactly.
+    const double cos_a = std::cos(0.5 * flat_angle);
+    if (flat_angle > 0)
+      {
+        const FlattenedJacobian jac{0.5 * flat_angle};
+        for (RingPoint &p : layer)
+          {
+            const double theta = std::atan2(p.u, p.v), r = std::hypot(p.u, p.v);
+            p.area *= jac.mean(theta - p.half_angle, theta + p.half_angle);
+            if (std::abs(p.v) > cos_a * r) // on the flats' side of the corner rays
+              {
+                const double s = cos_a * r / std::abs(p.v);
+                p.u *= s;
+                p.v *= s;
+              }
+          }
+      }
     const int    ny = n_cells(t, dx);
     const double dy = t / ny;
     stack_layers(out, layer, ny, dy, [&](const int k, const RingPoint &p) {
       return Vector<3>(p.u, centred(k, ny, dy), R + p.v);
     });
-    out.true_section_area    = D * t;
-    out.lattice_section_area = out.true_section_area; // the splitting plane x = 0 is the diameter's
-    out.true_volume          = pi * R * R * t;
-    scale_volumes(out);
-    out.cell_size = Vector<3>(dr, dy, dr);
+    // the splitting plane x = 0 spans the height between the flats; the face is the circle less
+    // the two segments the flats cut off (each R^2 (2 alpha - sin 2 alpha) / 2)
+    const double alpha       = 0.5 * flat_angle;
+    out.true_section_area    = D * cos_a * t;
+    out.lattice_section_area = out.true_section_area;
+    out.true_volume          = (pi - (2 * alpha - std::sin(2 * alpha))) * R * R * t;
+    scale_volumes(out); // round-off only: the sectors' images tile the face
+    // along the load: the outer particles lie cos(alpha) dr / 2 inside the flats (dr / 2 inside
+    // a round disc's top and bottom), so that a contact radius of half of it reaches the face
+    out.cell_size = Vector<3>(dr, dy, dr * cos_a);
     order_along_morton_curve(out, Vector<3>(0.5 * dr, dy, 0.5 * dr));
     return out;
   }

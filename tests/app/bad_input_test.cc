@@ -553,7 +553,7 @@ TEST(BadInput, EffectKeysOutOfRangeOrWithoutTheirModel)
                    {"Platens/Frame damping ratio", "Frame stiffness > 0"});
 }
 
-// The flattened disc's loading angle: out of range, on a cylinder, on rings, under jaws.
+// The flattened disc's loading angle: out of range, on a cylinder, under jaws.
 TEST(BadInput, FlatLoadingAngleOutOfRangeOrWithoutAFlatDisc)
 {
   Sandbox           box;
@@ -564,9 +564,6 @@ TEST(BadInput, FlatLoadingAngleOutOfRangeOrWithoutAFlatDisc)
                    {"Test/Flat loading angle", "[0, 60]"});
   expect_bad_input(box, {"run", ucs_case, "--set", "Test/Flat loading angle=20"},
                    {"Test/Flat loading angle", "BTS"});
-  expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=20", "--set",
-                         "SPH/Particle arrangement=body-fitted"},
-                   {"Test/Flat loading angle", "lattice"});
   expect_bad_input(box, {"run", bts, "--set", "Test/Flat loading angle=20", "--set", "Platens/Shape=jaw"},
                    {"Test/Flat loading angle", "flat"});
 }

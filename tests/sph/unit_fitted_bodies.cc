@@ -118,6 +118,71 @@ namespace
       }
   }
 
+  TEST(SphFittedBodies, FlattenedDiscHasExactFlatsAtEverySpacing)
+  {
+    // the reference study's flattened disc (2 alpha = 20 deg) and the steepest accepted (60 deg)
+    const double D = 0.05, t = 0.025, R = 0.5 * D;
+    for (const double two_alpha : {20.0, 60.0})
+      for (const double dx : {0.0025, 0.00125})
+        {
+          const double a = 0.5 * two_alpha * pi / 180, h = R * std::cos(a);
+          const auto   b = make_fitted_disc(D, t, dx, 2 * a);
+          const auto   round = make_fitted_disc(D, t, dx);
+          ASSERT_EQ(b.positions.size(), round.positions.size()); // the same rings, pulled in
+          const double dr = b.cell_size[0];
+          // the outer particles on the flats lie half a cell (cell_size[2] = dr cos a) inside
+          // them, so that the driver's contact radius puts the platens on the true flats
+          EXPECT_NEAR(b.cell_size[2], dr * std::cos(a), 1e-15);
+          double top = 0, bottom = D;
+          for (const auto &p : b.positions)
+            top = std::max(top, p[2]), bottom = std::min(bottom, p[2]);
+          EXPECT_NEAR(top + 0.5 * b.cell_size[2], R + h, 1e-12);
+          EXPECT_NEAR(bottom - 0.5 * b.cell_size[2], R - h, 1e-12);
+          // the top row is a flat: every outer-ring particle within the flat's angle is on it,
+          // spanning the flat's width 2 R sin a less the last arc step (at most dr / R of angle
+          // short of each corner)
+          double x_max = 0;
+          int    on_flat = 0;
+          for (const auto &p : b.positions)
+            if (std::abs(p[2] - top) < 1e-12 && std::abs(p[1] - b.positions[0][1]) < 1e-12)
+              ++on_flat, x_max = std::max(x_max, std::abs(p[0]));
+          const double width_angle = std::atan(x_max / (top - R));
+          EXPECT_LE(width_angle, a + 1e-12);
+          EXPECT_GT(width_angle, a - dr / (R - 0.5 * dr));
+          EXPECT_GE(on_flat, 3);
+          // every particle inside the flattened disc, the split and mid planes mirror planes
+          for (const auto &p : b.positions)
+            {
+              EXPECT_LE(std::hypot(p[0], p[2] - R), R - 0.5 * dr + 1e-12);
+              EXPECT_LE(std::abs(p[2] - R), h - 0.5 * b.cell_size[2] + 1e-12);
+            }
+          EXPECT_TRUE(mirror_symmetric(b.positions, 0, 0.0, 1e-9 * dx));
+          EXPECT_TRUE(mirror_symmetric(b.positions, 2, R, 1e-9 * dx));
+          // volumes: the true flattened disc (the circle less two segments R^2 (2a - sin 2a)/2);
+          // each is its ring sector's image, so they tile it before any scaling: a particle
+          // away from the flats keeps its round-disc volume to round-off (the scaling to the
+          // true volume is then 1 to round-off; the requirement is 0.1 %)
+          const double face = (pi - (2 * a - std::sin(2 * a))) * R * R;
+          EXPECT_NEAR(total(b.volumes) / (face * t), 1.0, 1e-12);
+          // (the sets are ordered along their own Morton curves: each found by its position)
+          const auto side = [](const Lattice<3> &set) { // outer ring, nearest the mid-plane
+            std::size_t k = 0;
+            for (std::size_t i = 0; i < set.positions.size(); ++i)
+              if (set.positions[i][0] > set.positions[k][0] + 1e-12)
+                k = i;
+            return set.volumes[k];
+          };
+          EXPECT_NEAR(side(b) / side(round), 1.0, 1e-12);
+          // spacing still near-uniform: the pull towards the flats shortens radial steps by up
+          // to the factor cos a (0.87 at 60 deg) near the axis, on the round disc's >= 0.85 dx
+          const auto d = nearest_distances(b.positions, 2 * dx);
+          EXPECT_GT(*std::min_element(d.begin(), d.end()), 0.85 * std::cos(a) * dx);
+          EXPECT_LT(*std::max_element(d.begin(), d.end()), 1.15 * dx);
+        }
+    EXPECT_THROW(make_fitted_disc(D, t, 1e-3, -0.1), std::invalid_argument);
+    EXPECT_THROW(make_fitted_disc(D, t, 1e-3, 1.1), std::invalid_argument);
+  }
+
   TEST(SphFittedBodies, SpacingIsNearUniformAtEveryAcceptedResolution)
   {
     // diameters from the coarsest the case files accept (10 spacings, dx <= D/10) to 30 spacings

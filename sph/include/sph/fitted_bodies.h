@@ -26,6 +26,10 @@ namespace sph
   /// Brazilian disc of diameter D and thickness t [m], axis along y, |y| <= t/2, centre at
   /// (0, 0, D/2) (the frame of make_disc). Rings in the x-z plane, one particle of every ring
   /// on the loaded diameter x = 0 at the top and at the bottom; layers along y spaced
-  /// t / round(t / dx).
-  Lattice<3> make_fitted_disc(double diameter, double thickness, double spacing);
+  /// t / round(t / dx). `flat_angle` > 0 [rad, at most max_flat_angle] makes it a flattened
+  /// Brazilian disc: flats normal to z at z = D/2 -+ R cos(flat_angle / 2), the rings pulled in
+  /// along their radii onto them (the outer ring's flat part then lies cos(flat_angle / 2) dr / 2
+  /// inside each flat, cell_size[2] = cos(flat_angle / 2) dr), the volumes the map's shares.
+  Lattice<3> make_fitted_disc(double diameter, double thickness, double spacing,
+                              double flat_angle = 0);
 } // namespace sph
