@@ -81,6 +81,12 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
   EXPECT_EQ(b.test, "BTS");
   EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
+  // the reference study's flattened disc, body-fitted, at its converged spacing
+  const auto f = app::read_case_file(source("cases/bts/bts-flattened.prm"), {}).parameters;
+  EXPECT_EQ(f.test, "BTS");
+  EXPECT_EQ(f.particle_arrangement, sph::ParticleArrangement::body_fitted);
+  expect_close(f.flat_angle, 20 * 3.14159265358979323846 / 180);
+  expect_close(f.sph.spacing, 0.00125);
   const auto t = app::read_case_file(source("cases/ctcs/ctcs.prm"), {}).parameters;
   EXPECT_EQ(t.test, "CTCS");
   EXPECT_EQ(t.rock_case.group, "M8");
