@@ -11,6 +11,7 @@ cd "$root"
 cosim="${COSIM:-build/bin/cosim}"
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}" # shared machine: do not spin at barriers
 bts=cases/bts/bts.prm
+flat=cases/bts/bts-flattened.prm
 ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm
 quick=(--set "Output/Snapshots=2")
@@ -70,6 +71,13 @@ run() {
     platens-bts)  study platens-bts $bts --vary "Platens/Model=rigid,elastic" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
     platens-bts-bonded) study platens-bts-bonded $bts --set "Platens/Bonded=true" \
+                    --vary "Platens/Model=rigid,elastic" ;;
+    # the reference study's flattened disc, body-fitted, at its converged 1.25 mm
+    bts-flattened-spacing) study bts-flattened-spacing $flat \
+                    --vary "SPH/Particle spacing=0.0025,0.00125,0.001,0.0008" ;;
+    platens-bts-flattened) study platens-bts-flattened $flat --vary "Platens/Model=rigid,elastic" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
+    platens-bts-flattened-bonded) study platens-bts-flattened-bonded $flat --set "Platens/Bonded=true" \
                     --vary "Platens/Model=rigid,elastic" ;;
     # the BTS displacement at peak (cases/diagnose-basalt/README.md): crack closure against a
     # compliant load frame, on the 1.25 mm disc (spacing-converged) and the 2.5 mm cylinder
@@ -189,6 +197,7 @@ run() {
 all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-ucs-fitted platens-ucs-fitted-bonded platens-bts platens-bts-bonded basalt-bts-compliance
+     bts-flattened-spacing platens-bts-flattened platens-bts-flattened-bonded
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm

@@ -29,7 +29,7 @@ namespace sph
   /// t / round(t / dx). `flat_angle` > 0 [rad, at most max_flat_angle] makes it a flattened
   /// Brazilian disc: flats normal to z at z = D/2 -+ R cos(flat_angle / 2), the rings pulled in
   /// along their radii onto them (the outer ring's flat part then lies cos(flat_angle / 2) dr / 2
-  /// inside each flat, cell_size[2] = cos(flat_angle / 2) dr), the volumes the map's shares.
+  /// inside each flat, cell_size[2] = cos(flat_angle / 2) dr), each volume its ring sector's image.
   Lattice<3> make_fitted_disc(double diameter, double thickness, double spacing,
                               double flat_angle = 0);
 } // namespace sph
