@@ -23,7 +23,7 @@ namespace app
   {
     return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian | --envelope] [--data DIR] [--csv]\n"
            "       cosim calibrate --simulate UCS_CASE [--set S/K=V] [--seeds N] [--ucs MPa] [--tolerance PCT]\n"
-           "                       [--check BTS_CASE | --with-bts BTS_CASE [--bts MPa]]\n"
+           "                       [--check BTS_CASE | --with-bts BTS_CASE [--bts MPa] | --cutoff-from BTS_CASE [--bts MPa]]\n"
            "\n"
            "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
            "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
@@ -62,6 +62,12 @@ namespace app
            "simulated UCS and BTS are both the measured ones (the group's Table 3, or --ucs and\n"
            "--bts), by Broyden's method on their logarithms: a heterogeneous rock loses more UCS\n"
            "than BTS, so its UCS/BTS ratio asks for another phi.\n"
+           "--cutoff-from BTS_CASE is for Rock/Model = hoek-brown (Rock/Strength parameters =\n"
+           "envelope): it scales the tension cut-off alone until the simulated BTS is the measured\n"
+           "one, leaving the envelope that sets the UCS and the triaxial strengths as fitted, then\n"
+           "runs the UCS case once as a check. The disc's peak under a cut-off follows its softening\n"
+           "and spacing, not the centre's stress state: run the disc where it has converged\n"
+           "(cases/bts/bts-flattened.prm).\n"
            "\n"
            "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
            "and BTS) next to the calibrated values stored there (Table 4).\n"
@@ -77,7 +83,7 @@ namespace app
            "  --simulate CASE  calibrate through the simulator on this UCS case (see above), with\n"
            "                 --set \"S/K=V\" (repeatable), --seeds N (default 3), --ucs MPa,\n"
            "                 --tolerance PCT (default 0.5), --check BTS_CASE, --with-bts BTS_CASE,\n"
-           "                 --bts MPa\n"
+           "                 --cutoff-from BTS_CASE, --bts MPa\n"
            "\n"
            "Exit status: 0 done, 2 bad input.\n";
   }

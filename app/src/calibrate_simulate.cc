@@ -30,6 +30,7 @@ namespace app
     struct Options
     {
       std::string case_file, check_file, bts_file; ///< bts_file: --with-bts
+      std::string cutoff_file;                      ///< --cutoff-from: a Hoek-Brown rock's disc
       std::vector<std::string> overrides;
       int seeds = 3;
       double target = 0;     ///< [Pa]; 0 = the group's Table 3 UCS
@@ -96,6 +97,8 @@ namespace app
           o.check_file = cursor.value(a);
         else if (a == "--with-bts")
           o.bts_file = cursor.value(a);
+        else if (a == "--cutoff-from")
+          o.cutoff_file = cursor.value(a);
         else if (a == "--bts")
         {
           o.bts_target = cursor.number(a) * 1e6;
@@ -127,20 +130,29 @@ namespace app
           o.csv = true;
         else
           throw InputError("cosim calibrate --simulate: unknown option '" + diagnose::clip(a) + "'" +
-                           did_you_mean(a, {"--simulate", "--check", "--with-bts", "--bts", "--set", "--seeds", "--ucs",
-                                            "--tolerance", "--csv"}) +
-                           "; accepted: --check, --with-bts, --bts, --set, --seeds, --ucs, --tolerance, --csv");
+                           did_you_mean(a, {"--simulate", "--check", "--with-bts", "--cutoff-from", "--bts", "--set",
+                                            "--seeds", "--ucs", "--tolerance", "--csv"}) +
+                           "; accepted: --check, --with-bts, --cutoff-from, --bts, --set, --seeds, --ucs, --tolerance, --csv");
       }
       return o;
     }
 
     CaseParameters read_case(const std::string &file, const std::vector<std::string> &overrides,
-                             const std::string &test)
+                             const std::string &test, const bool hoek_brown = false)
     {
       CaseParameters p = read_case_file(file, overrides).parameters;
       if (p.test != test)
         throw InputError("cosim calibrate --simulate: " + file + ": Test/Type = " + p.test + "; " +
-                         (test == "UCS" ? "the calibration runs a UCS case" : "--check and --with-bts run a BTS case"));
+                         (test == "UCS" ? "the calibration runs a UCS case"
+                                        : "--check, --with-bts and --cutoff-from run a BTS case"));
+      if (hoek_brown)
+      {
+        if (p.rock.model != sph::RockModel::hoek_brown || !(p.rock.tensile_strength > 0))
+          throw InputError("cosim calibrate --cutoff-from: " + file +
+                           ": calibrates the tension cut-off of Rock/Model = hoek-brown (Rock/Tensile strength > 0, "
+                           "as Rock/Strength parameters = envelope sets it)");
+        return p;
+      }
       if (p.rock.model != sph::RockModel::mohr_coulomb && p.rock.model != sph::RockModel::mohr_coulomb_cutoff)
         throw InputError("cosim calibrate --simulate: " + file +
                          ": calibrates the cohesion (and tension cut-off) of Rock/Model = mohr-coulomb or "
@@ -259,6 +271,61 @@ namespace app
       }
       return 0;
     }
+
+    /// --cutoff-from: a Hoek-Brown rock's tension cut-off alone, scaled until the simulated BTS
+    /// of the disc case is the measured one (the envelope, which sets the UCS and the triaxial
+    /// strengths, is not touched): a secant in log k, log BTS, as the UCS-only calibration. The
+    /// UCS case runs once at the end, a check that the cut-off leaves the UCS where it was.
+    int cutoff_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
+                           const double ucs_target)
+    {
+      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
+      if (!(bts_target > 0))
+        throw InputError("cosim calibrate --cutoff-from: the case's group has no BTS; give --bts MPa");
+      const auto at = [](CaseParameters p, const double k) {
+        p.rock.tensile_strength *= k;
+        return p;
+      };
+      std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", "cutoff_MPa",
+                  "mean_BTS_MPa", "peaks_MPa");
+      double k = 1, k_run = 1, previous_k = 0, previous_mean = 0;
+      Sample b;
+      bool   converged = false;
+      for (int iteration = 0; iteration < 8; ++iteration)
+      {
+        k_run = k;
+        b     = sample(at(bts_case, k), o.seeds, "BTS at cut-off scale " + std::to_string(k));
+        std::printf(o.csv ? "%d,%.6f,%.4f,%.4f,%s\n" : "%-9d %10.6f %12.4f %12.4f  %s\n", iteration, k,
+                    bts_case.rock.tensile_strength * k * 1e-6, b.mean * 1e-6, joined(b.peaks, o.csv).c_str());
+        std::fflush(stdout);
+        if (std::abs(b.mean / bts_target - 1) <= o.tolerance)
+        {
+          converged = true;
+          break;
+        }
+        double slope = 1; // d log(BTS) / d log(k)
+        if (previous_k > 0)
+          slope = std::clamp(std::log(b.mean / previous_mean) / std::log(k / previous_k), 0.2, 2.0);
+        previous_k    = k;
+        previous_mean = b.mean;
+        k *= std::pow(bts_target / b.mean, 1 / slope);
+      }
+      const double cutoff = bts_case.rock.tensile_strength * k_run;
+      const Sample u      = sample(at(ucs_case, k_run), o.seeds, "check UCS");
+      std::printf("\ntarget BTS %.2f MPa: simulated %.2f MPa (%+.2f %%); check UCS %.2f MPa against %.2f MPa "
+                  "(%+.2f %%)\n",
+                  bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), u.mean * 1e-6,
+                  ucs_target * 1e-6, 100 * (u.mean / ucs_target - 1));
+      std::printf("tension cut-off %.4f MPa (%.4f of the case's); run with:\n  --set \"Rock/Tensile strength=%.6g\"\n",
+                  cutoff * 1e-6, k_run, cutoff);
+      if (!converged)
+      {
+        std::fprintf(stderr, "cosim calibrate --cutoff-from: not converged to %.2f %% in 8 iterations\n",
+                     100 * o.tolerance);
+        return 1;
+      }
+      return 0;
+    }
   } // namespace
 
   bool is_simulated_calibration(const std::vector<std::string> &args)
@@ -274,6 +341,18 @@ namespace app
     const Options o = parse(args);
     if (o.case_file.empty())
       throw InputError("cosim calibrate: --simulate needs a UCS case file");
+    if (!o.cutoff_file.empty())
+    {
+      if (!o.check_file.empty() || !o.bts_file.empty())
+        throw InputError("cosim calibrate: --cutoff-from calibrates on its own BTS case; leave out --check and --with-bts");
+      const CaseParameters ucs  = read_case(o.case_file, o.overrides, "UCS", true);
+      const CaseParameters disc = read_case(o.cutoff_file, o.overrides, "BTS", true);
+      require_same_rock(ucs, disc, o.cutoff_file);
+      const double target = o.target > 0 ? o.target : ucs.rock_case.ucs;
+      if (!(target > 0))
+        throw InputError("cosim calibrate --simulate: the case's group has no UCS; give --ucs MPa");
+      return cutoff_calibration(o, ucs, disc, target);
+    }
     const CaseParameters base = read_case(o.case_file, o.overrides, "UCS");
     // the check case reads the same overrides: the same rock, another test
     const std::optional<CaseParameters> check =
