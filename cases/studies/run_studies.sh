@@ -97,6 +97,18 @@ run() {
     envelope-ctcs) study envelope-ctcs $ctcs --set "Rock/Model=hoek-brown" \
                     --set "Rock/Strength parameters=envelope" --key "Test/Confining pressure" \
                     --values 10e6,30e6,50e6 --groups M8,M9,M10 ;;
+    # the envelope's tension cut-off calibrated through the flattened disc at 1.25 mm (cosim
+    # calibrate --simulate cases/ucs/ucs.prm --set "Rock/Group=Mx" --set "Rock/Model=hoek-brown"
+    # --set "Rock/Strength parameters=envelope" --set "SPH/Particle arrangement=body-fitted"
+    # --cutoff-from cases/bts/bts-flattened.prm): M8 11.6944, M9 9.17808, M10 6.73974 MPa
+    envelope-cutoff-bts-M10) study envelope-cutoff-bts-M10 $flat --set "Rock/Group=M10" --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --set "Rock/Tensile strength=6.73974e6" \
+                    --key "SPH/Particle spacing" --values 0.0025,0.00125,0.001 ;;
+    envelope-cutoff-ctcs-M8|envelope-cutoff-ctcs-M9|envelope-cutoff-ctcs-M10)
+                  g=${1##*-}; declare -A cut=([M8]=11.6944e6 [M9]=9.17808e6 [M10]=6.73974e6)
+                  study "$1" $ctcs --set "Rock/Group=$g" --set "Rock/Model=hoek-brown" \
+                    --set "Rock/Strength parameters=envelope" --set "Rock/Tensile strength=${cut[$g]}" \
+                    --key "Test/Confining pressure" --values 10e6,30e6,50e6 ;;
     # the disc's strength under the envelope's tension cut-off against the softening after it
     envelope-bts-softening) study envelope-bts-softening $bts --set "Rock/Model=hoek-brown" \
                     --set "Rock/Strength parameters=envelope" --set "Rock/Group=M10" \
@@ -198,6 +210,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-ucs-fitted platens-ucs-fitted-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      bts-flattened-spacing platens-bts-flattened platens-bts-flattened-bonded
+     envelope-cutoff-bts-M10 envelope-cutoff-ctcs-M8 envelope-cutoff-ctcs-M9 envelope-cutoff-ctcs-M10
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
      heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm
