@@ -157,7 +157,7 @@ TEST(CoupledBodyFitted, ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays)
   // across, -2.960 T along the load), volume means over the particles within 0.3 R of the
   // centre, all layers (the field falls to 0.86 T there).
   const double a = 10 * 3.14159265358979323846 / 180;
-  // 1.25 mm: 2 %, measured +0.9 % (sigma_xx) and +0.8 % (sigma_zz) (1 mm: +0.1 / +0.1 %, the
+  // 1.25 mm: 2 %, measured +0.9 % (sigma_xx) and +0.8 % (sigma_zz) (1 mm: within 0.1 % both, the
   // plane solution holding for the 25 mm thick disc's mean); 2.5 mm, the case's spacing: 8 %,
   // measured +6.8 / +2.9 %. The round lattice disc with the same flats cut in is 22 / 8 % low at
   // 2.5 mm and 12 / 4 % low at 1.25 mm (its top row is a wider flat), the reason its BTS moves
