@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -175,6 +176,8 @@ namespace app
                             : cx.strength_scatter != cy.strength_scatter ? "Rock/Strength scatter"
                             : cx.scatter_length != cy.scatter_length   ? "Rock/Scatter length"
                             : cx.scatter_seed != cy.scatter_seed       ? "Rock/Scatter seed"
+                            : x.hb_sigma_ci != y.hb_sigma_ci || x.hb_mb != y.hb_mb || x.hb_a != y.hb_a
+                              ? "the Hoek-Brown envelope (Rock/Strength parameters, Rock/Hoek-Brown mi, a)"
                                                                        : nullptr;
       if (differs)
         throw InputError("cosim calibrate --with-bts: " + bts_file + ": " + differs +
@@ -209,6 +212,49 @@ namespace app
         out += b;
       }
       return out;
+    }
+
+    /// One strength scaled by k until the mean simulated peak of `run(k)` is `target` within
+    /// --tolerance, at most 8 runs: the first step takes the peak as proportional to k (k <- k
+    /// target / peak), the later ones a secant in log k, log peak through the last two (slope
+    /// kept within [0.2, 2]: the peak grows less than in proportion when a heterogeneous rock's
+    /// fixed fracture energy makes the stronger rock more brittle). Prints a row per run: the
+    /// scaled value `base` k [MPa] under `value_column`, the mean peak under `peak_column` with
+    /// `peak_digits` decimals. k is the last scale run, not the next guess.
+    struct ScaleFit
+    {
+      double k = 1;
+      Sample sample;
+      bool   converged = false;
+    };
+    ScaleFit fit_scale(const Options &o, const char *value_column, const char *peak_column, const int peak_digits,
+                       const double base, const double target, const std::function<Sample(double)> &run)
+    {
+      std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", value_column,
+                  peak_column, "peaks_MPa");
+      ScaleFit fit;
+      double   k = 1, previous_k = 0, previous_mean = 0;
+      for (int iteration = 0; iteration < 8; ++iteration)
+      {
+        fit.k      = k;
+        fit.sample = run(k);
+        const Sample &s = fit.sample;
+        std::printf(o.csv ? "%d,%.6f,%.4f,%.*f,%s\n" : "%-9d %10.6f %12.4f %12.*f  %s\n", iteration, k,
+                    base * k * 1e-6, peak_digits, s.mean * 1e-6, joined(s.peaks, o.csv).c_str());
+        std::fflush(stdout);
+        if (std::abs(s.mean / target - 1) <= o.tolerance)
+        {
+          fit.converged = true;
+          break;
+        }
+        double slope = 1; // d log(peak) / d log(k)
+        if (previous_k > 0)
+          slope = std::clamp(std::log(s.mean / previous_mean) / std::log(k / previous_k), 0.2, 2.0);
+        previous_k    = k;
+        previous_mean = s.mean;
+        k *= std::pow(target / s.mean, 1 / slope);
+      }
+      return fit;
     }
 
     /// --with-bts: c (with the cut-off) and phi together, the two unknowns of Eqs. 14-15, so that
@@ -274,7 +320,7 @@ namespace app
 
     /// --cutoff-from: a Hoek-Brown rock's tension cut-off alone, scaled until the simulated BTS
     /// of the disc case is the measured one (the envelope, which sets the UCS and the triaxial
-    /// strengths, is not touched): a secant in log k, log BTS, as the UCS-only calibration. The
+    /// strengths, is not touched), by fit_scale as the UCS-only calibration. The
     /// UCS case runs once at the end, a check that the cut-off leaves the UCS where it was.
     int cutoff_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
                            const double ucs_target)
@@ -286,39 +332,21 @@ namespace app
         p.rock.tensile_strength *= k;
         return p;
       };
-      std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", "cutoff_MPa",
-                  "mean_BTS_MPa", "peaks_MPa");
-      double k = 1, k_run = 1, previous_k = 0, previous_mean = 0;
-      Sample b;
-      bool   converged = false;
-      for (int iteration = 0; iteration < 8; ++iteration)
-      {
-        k_run = k;
-        b     = sample(at(bts_case, k), o.seeds, "BTS at cut-off scale " + std::to_string(k));
-        std::printf(o.csv ? "%d,%.6f,%.4f,%.4f,%s\n" : "%-9d %10.6f %12.4f %12.4f  %s\n", iteration, k,
-                    bts_case.rock.tensile_strength * k * 1e-6, b.mean * 1e-6, joined(b.peaks, o.csv).c_str());
-        std::fflush(stdout);
-        if (std::abs(b.mean / bts_target - 1) <= o.tolerance)
-        {
-          converged = true;
-          break;
-        }
-        double slope = 1; // d log(BTS) / d log(k)
-        if (previous_k > 0)
-          slope = std::clamp(std::log(b.mean / previous_mean) / std::log(k / previous_k), 0.2, 2.0);
-        previous_k    = k;
-        previous_mean = b.mean;
-        k *= std::pow(bts_target / b.mean, 1 / slope);
-      }
-      const double cutoff = bts_case.rock.tensile_strength * k_run;
-      const Sample u      = sample(at(ucs_case, k_run), o.seeds, "check UCS");
+      const ScaleFit fit = fit_scale(o, "cutoff_MPa", "mean_BTS_MPa", 4, bts_case.rock.tensile_strength, bts_target,
+                                     [&](const double k) {
+                                       return sample(at(bts_case, k), o.seeds,
+                                                     "BTS at cut-off scale " + std::to_string(k));
+                                     });
+      const Sample &b      = fit.sample;
+      const double  cutoff = bts_case.rock.tensile_strength * fit.k;
+      const Sample  u      = sample(at(ucs_case, fit.k), o.seeds, "check UCS");
       std::printf("\ntarget BTS %.2f MPa: simulated %.2f MPa (%+.2f %%); check UCS %.2f MPa against %.2f MPa "
                   "(%+.2f %%)\n",
                   bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), u.mean * 1e-6,
                   ucs_target * 1e-6, 100 * (u.mean / ucs_target - 1));
       std::printf("tension cut-off %.4f MPa (%.4f of the case's); run with:\n  --set \"Rock/Tensile strength=%.6g\"\n",
-                  cutoff * 1e-6, k_run, cutoff);
-      if (!converged)
+                  cutoff * 1e-6, fit.k, cutoff);
+      if (!fit.converged)
       {
         std::fprintf(stderr, "cosim calibrate --cutoff-from: not converged to %.2f %% in 8 iterations\n",
                      100 * o.tolerance);
@@ -369,37 +397,13 @@ namespace app
       return joint_calibration(o, base, disc, target);
     }
     if (o.bts_target > 0)
-      throw InputError("cosim calibrate: --bts is the target of --with-bts");
+      throw InputError("cosim calibrate: --bts is the target of --with-bts or --cutoff-from");
 
-    // the peak grows with the strengths, less than in proportion when a heterogeneous rock's
-    // fracture energy (fixed) makes the stronger rock more brittle: the first step takes it as
-    // proportional (k <- k target / peak), the later ones a secant in log k, log peak through the
-    // last two (slope kept within [0.2, 2])
-    std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", "cohesion_MPa",
-                "mean_UCS_MPa", "peaks_MPa");
-    double k = 1, k_run = 1, previous_k = 0, previous_mean = 0; // k_run: the scale s was run at
-    Sample s;
-    bool converged = false;
-    for (int iteration = 0; iteration < 8; ++iteration)
-    {
-      k_run = k;
-      s     = sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));
-      std::printf(o.csv ? "%d,%.6f,%.4f,%.3f,%s\n" : "%-9d %10.6f %12.4f %12.3f  %s\n", iteration, k,
-                  base.rock.cohesion * k * 1e-6, s.mean * 1e-6, joined(s.peaks, o.csv).c_str());
-      std::fflush(stdout);
-      if (std::abs(s.mean / target - 1) <= o.tolerance)
-      {
-        converged = true;
-        break;
-      }
-      double slope = 1; // d log(peak) / d log(k)
-      if (previous_k > 0)
-        slope = std::clamp(std::log(s.mean / previous_mean) / std::log(k / previous_k), 0.2, 2.0);
-      previous_k    = k;
-      previous_mean = s.mean;
-      k *= std::pow(target / s.mean, 1 / slope);
-    }
-    k                               = k_run; // the last scale run, not the next guess
+    const ScaleFit fit = fit_scale(o, "cohesion_MPa", "mean_UCS_MPa", 3, base.rock.cohesion, target, [&](const double k) {
+      return sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));
+    });
+    const double  k = fit.k;
+    const Sample &s = fit.sample;
     const CaseParameters calibrated = scaled(base, k);
     std::printf("\ntarget UCS %.2f MPa: simulated %.2f MPa (%+.2f %%), standard error over %zu rock%s %.2f MPa\n",
                 target * 1e-6, s.mean * 1e-6, 100 * (s.mean / target - 1), s.peaks.size(),
@@ -417,7 +421,7 @@ namespace app
                   o.check_file.c_str(), b.mean * 1e-6, b.standard_error * 1e-6, bts * 1e-6,
                   100 * (b.mean / bts - 1));
     }
-    if (!converged)
+    if (!fit.converged)
     {
       std::fprintf(stderr, "cosim calibrate --simulate: not converged to %.2f %% in 8 iterations\n",
                    100 * o.tolerance);

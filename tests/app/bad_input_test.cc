@@ -198,15 +198,21 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
                          "Rock/Strength parameters=envelope", "--set", "Rock/Group=M10", "--cutoff-from", bts_case,
                          "--with-bts", bts_case},
                    {"--cutoff-from calibrates on its own BTS case"});
-  // the two cases must be one rock: a BTS case of another group
-  const fs::path other = box.dir() / "other.prm";
-  {
-    std::ifstream in(bts_case);
-    std::ofstream out(other);
-    out << in.rdbuf() << "subsection Rock\n  set Group = M2\nend\n";
-  }
+  // the two cases must be one rock: the BTS case with one more Rock key
+  const auto disc_with = [&](const std::string &name, const std::string &rock_line) {
+    const fs::path path = box.dir() / name;
+    std::ifstream  in(bts_case);
+    std::ofstream(path) << in.rdbuf() << "subsection Rock\n  set " << rock_line << "\nend\n";
+    return path;
+  };
+  const fs::path other = disc_with("other.prm", "Group = M2"); // another group
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", other.string()},
                    {"other.prm", "differs from the UCS case's", "one rock"});
+  // and for --cutoff-from one Hoek-Brown envelope: a disc with another m_i
+  const fs::path other_envelope = disc_with("other_envelope.prm", "Hoek-Brown mi = 20");
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+                         "Rock/Tensile strength=10e6", "--cutoff-from", other_envelope.string()},
+                   {"other_envelope.prm", "the Hoek-Brown envelope", "one rock"});
 }
 
 TEST(BadInput, ConfiningPressureOnUcs)

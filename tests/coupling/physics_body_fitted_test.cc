@@ -79,6 +79,31 @@ namespace
       return 0.5 * (rows.back().force + rows.back().force_bottom);
     }
   };
+
+  /// An elastic body-fitted disc of case `p` (25 mm thick, as cases/bts) at spacing dx, loaded to
+  /// d/D = end_strain: the run with its last snapshot, the mean load P [N] and nominal stress T
+  /// = 2P/(pi D t) [Pa] at that snapshot, and the particle set the run was built of (one rank:
+  /// the snapshot is in the set's order).
+  struct ElasticDisc
+  {
+    RowsAndLastSnapshot run;
+    double              P = 0, T = 0;
+    sph::Lattice<3>     set;
+  };
+  ElasticDisc run_elastic_disc(CaseParameters p, const double dx, const double end_strain)
+  {
+    p.length             = 0.025;
+    p.rock.model         = sph::RockModel::elastic;
+    p.sph.spacing        = dx;
+    p.loading.end_strain = end_strain;
+    p.output.n_snapshots = 4;
+    ElasticDisc d;
+    run_case(p, d.run);
+    d.P   = d.run.load_at(d.run.snapshot_time);
+    d.T   = 2 * d.P / (3.14159265358979323846 * p.diameter * p.length);
+    d.set = sph::make_fitted_disc(p.diameter, p.length, dx, p.flat_angle);
+    return d;
+  }
 } // namespace
 
 TEST(CoupledBodyFitted, ElasticDiscCarriesTheRimLoadAsTheLineLoadSolution)
@@ -87,20 +112,15 @@ TEST(CoupledBodyFitted, ElasticDiscCarriesTheRimLoadAsTheLineLoadSolution)
   // platen along one line (in every layer the ring particle on the loaded diameter), the load
   // case of the Brazilian test's closed form (plane elasticity, Hondros with a vanishing contact
   // arc): at the centre sigma_xx = 2P/(pi D t) (tension), sigma_zz = -6P/(pi D t).
-  CaseParameters p        = body_fitted("BTS");
-  p.length                = 0.025; // disc thickness, as cases/bts
-  p.rock.model            = sph::RockModel::elastic;
-  p.sph.spacing           = 4e-3; // D/12.5, coarse for time (at most a sixth of the thickness)
-  p.loading.end_strain    = 5e-4; // d/D
-  p.output.n_snapshots    = 4;
-  RowsAndLastSnapshot run;
-  run_case(p, run);
-  const double P      = run.load_at(run.snapshot_time);
-  const double sigma0 = 2 * P / (3.14159265358979323846 * p.diameter * p.length);
+  const CaseParameters p = body_fitted("BTS");
+  // 4 mm: D/12.5, coarse for time (at most a sixth of the thickness); to d/D = 5e-4
+  const ElasticDisc d      = run_elastic_disc(p, 4e-3, 5e-4);
+  const double      P      = d.P;
+  const double      sigma0 = d.T;
   ASSERT_GT(sigma0, 1e6) << "the disc must carry load";
-  const ParticleSnapshot &q   = run.particles;
-  const sph::Lattice<3>   set = sph::make_fitted_disc(p.diameter, p.length, p.sph.spacing);
-  ASSERT_EQ(q.n, set.positions.size()); // (one rank: the snapshot is in the set's order)
+  const ParticleSnapshot &q   = d.run.particles;
+  const sph::Lattice<3>  &set = d.set;
+  ASSERT_EQ(q.n, set.positions.size());
   // Equilibrium (the virial of the static body): the loads -P at z = D and +P at z = 0 give
   // int sigma_zz dV = -P D and int sigma_xx dV = 0, whatever the stress field. 0.90-1.0: the
   // stress lags the platen force in the loading at the derived rate (measured 0.92 here, 0.95
@@ -164,20 +184,13 @@ TEST(CoupledBodyFitted, ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays)
   // with the spacing
   for (const auto [dx, tol] : {std::pair{2.5e-3, 0.08}, std::pair{1.25e-3, 0.02}})
     {
-      CaseParameters p     = body_fitted("BTS");
-      p.length             = 0.025;
-      p.flat_angle         = 2 * a;
-      p.rock.model         = sph::RockModel::elastic;
-      p.sph.spacing        = dx;
-      p.loading.end_strain = 4e-4;
-      p.output.n_snapshots = 4;
-      RowsAndLastSnapshot run;
-      run_case(p, run);
-      const double P = run.load_at(run.snapshot_time);
-      const double T = 2 * P / (3.14159265358979323846 * p.diameter * p.length);
+      CaseParameters p = body_fitted("BTS");
+      p.flat_angle     = 2 * a;
+      const ElasticDisc d = run_elastic_disc(p, dx, 4e-4);
+      const double      T = d.T;
       ASSERT_GT(T, 1e6) << "the disc must carry load";
-      const ParticleSnapshot &q   = run.particles;
-      const sph::Lattice<3>   set = sph::make_fitted_disc(p.diameter, p.length, dx, p.flat_angle);
+      const ParticleSnapshot &q   = d.run.particles;
+      const sph::Lattice<3>  &set = d.set;
       ASSERT_EQ(q.n, set.positions.size());
       const double R = 0.5 * p.diameter;
       double       sxx = 0, szz = 0, hxx = 0, hzz = 0, v = 0;

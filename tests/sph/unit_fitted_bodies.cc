@@ -127,8 +127,8 @@ namespace
         {
           const double a = 0.5 * two_alpha * pi / 180, h = R * std::cos(a);
           const auto   b = make_fitted_disc(D, t, dx, 2 * a);
-          const auto   round = make_fitted_disc(D, t, dx);
-          ASSERT_EQ(b.positions.size(), round.positions.size()); // the same rings, pulled in
+          const auto   round_disc = make_fitted_disc(D, t, dx);
+          ASSERT_EQ(b.positions.size(), round_disc.positions.size()); // the same rings, pulled in
           const double dr = b.cell_size[0];
           // the outer particles on the flats lie half a cell (cell_size[2] = dr cos a) inside
           // them, so that the driver's contact radius puts the platens on the true flats
@@ -172,7 +172,7 @@ namespace
                 k = i;
             return set.volumes[k];
           };
-          EXPECT_NEAR(side(b) / side(round), 1.0, 1e-12);
+          EXPECT_NEAR(side(b) / side(round_disc), 1.0, 1e-12);
           // spacing still near-uniform: the pull towards the flats shortens radial steps by up
           // to the factor cos a (0.87 at 60 deg) near the axis, on the round disc's >= 0.85 dx
           const auto d = nearest_distances(b.positions, 2 * dx);
