@@ -219,6 +219,8 @@ namespace diagnose
                           ": no strength (UCS, BTS, c, phi or a curve to failure); only its "
                           "stiffness is diagnosed");
         }
+        if (m && m->nu)
+          g.nu = *m->nu;
         // stiffness: measured E; else from specimen-displacement curves; else platen curves
         double E = m && m->E_GPa ? *m->E_GPa * 1e3 : 0;
         for (int pass = 0; pass < 2 && E <= 0; ++pass)
@@ -661,7 +663,18 @@ namespace diagnose
       if (has("machine_compliance"))
         r.k_frame = v.at("k_machine");
       if (has("end_friction"))
-        r.friction = v.at("mu");
+      {
+        // a homogeneous Mohr-Coulomb cylinder held at its ends fails at its rims first and is
+        // weakened by friction (README, Known limitations); a rock that fails through its weak
+        // cells, with crack-band softening, is confined by it (Weibull m 10 on 5 mm cells, a
+        // rock's 5-20: CoupledUcs.EndFrictionStrengthensAHeterogeneousRock)
+        r.friction  = v.at("mu");
+        r.weibull_m = 10;
+        r.notes.push_back("end friction: mu " + std::to_string(r.friction) +
+                          " on a heterogeneous rock (Weibull m 10, crack-band softening), its "
+                          "strengths scaled to the standard specimen's strength; the mean of "
+                          "three rocks (Rock/Scatter seed 1-3), of which this file is the first");
+      }
       if (has("heterogeneity"))
       {
         const double f = sph::rock::weakest_link_strength_factor(d.volume_ratio, v.at("weibull_m"));
@@ -831,6 +844,26 @@ namespace diagnose
               train.push_back(x);
           const Fitted f = fit_model(s, current.effects, current.refit, train, values_of(current), false);
           t.extended = simulated_rock(s, *g, *d, current.effects, values_of(f));
+          if (t.extended.weibull_m > 0)
+          {
+            // what the extended model says a standard 50 x 100 mm specimen of the group and the
+            // data's shortest compressive specimen (at the reference volume and rate) carry
+            const Surrogate model(s.groups, current.effects, current.refit);
+            Datum standard;
+            standard.test               = "UCS";
+            standard.group              = g->group;
+            t.extended.calibration_peak = model.predict(standard, f.result.values);
+            Datum shortest              = standard;
+            for (const auto &c : s.data.curves)
+              if (c.test != "BTS" && c.length / c.diameter < shortest.slenderness)
+              {
+                shortest.slenderness      = c.length / c.diameter;
+                t.extended.short_diameter = c.diameter;
+                t.extended.short_length   = c.length;
+              }
+            if (t.extended.short_length > 0) // else no specimen shorter than L/D 2: mu as fitted
+              t.extended.short_peak = model.predict(shortest, f.result.values);
+          }
         }
         else
           t.extended = t.baseline;

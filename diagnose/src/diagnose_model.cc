@@ -121,6 +121,11 @@ namespace diagnose
     return ucs + (1.0 + sphi) / (1.0 - sphi) * s3;
   }
 
+  double held_end_shortening(const double nu)
+  {
+    return nu * nu * (0.526 + 0.022 * nu + 0.476 * nu * nu);
+  }
+
   double Surrogate::tensile_strength(const std::string &group, const std::vector<double> &p) const
   {
     const GroupBase &g = groups_[group_index(group)];
@@ -163,6 +168,8 @@ namespace diagnose
       eps =
         closure_axial_strain(q, d.sigma3, g.E, value("E0_ratio", p, 1), value("sigma_cc", p, 1));
     double disp = eps * d.length;
+    if (d.platen && has(effects_, "end_friction"))
+      disp = eps * (d.length - held_end_shortening(g.nu) * d.length / d.slenderness);
     if (d.platen && has(effects_, "machine_compliance"))
       disp += d.force / value("k_machine", p, 1e300);
     return disp;

@@ -57,6 +57,7 @@ namespace diagnose
     double ucs = 0, phi = 0; ///< MC envelope: UCS [MPa], friction angle [deg]
     double E = 0;            ///< Young's modulus [MPa]
     std::string source;      ///< where they came from (report)
+    double nu = 0.25;        ///< Poisson's ratio [-] (measured, else 0.25)
   };
 
   /// The surrogate for one effect set: parameter layout and predictions.
@@ -117,6 +118,22 @@ namespace diagnose
     double closure_ratio = 1, closure_stress = 1; ///< E0 / E [-], sigma_cc [MPa]
     double k_frame  = 0; ///< load frame [kN/mm]; 0: rigid
     double friction = 0; ///< platen friction coefficient [-]
+    /// A heterogeneous crack-band rock (the rock that carries end friction's confinement; a
+    /// homogeneous cylinder fails at its held rims first and is weakened by friction): Weibull
+    /// modulus of the strength scatter; 0: homogeneous, the case's own softening.
+    double weibull_m = 0;
+    /// The strength [MPa] that the heterogeneous rock's standard specimen (50 x 100 mm, the
+    /// platens' friction) carries on the mean of its realisations: simulate() scales the
+    /// strengths to it (its fracture energy follows: the case's rock's brittleness).
+    double calibration_peak = 0;
+    /// What the extended model says the data's shortest compressive specimen (D x L [mm])
+    /// carries [MPa]: simulate() fits the rock's brittleness to it
+    double short_peak = 0, short_diameter = 0, short_length = 0;
+    /// The strength scale found by simulate() [-]
+    double calibration_factor = 1;
+    /// The heterogeneous rock's characteristic length E G_I / f_t^2 [m] (its fracture energy
+    /// follows at any strength); 0: the case's own rock's
+    double characteristic_length = 0;
     std::vector<std::string> notes; ///< comment lines for the case file
   };
 
@@ -141,6 +158,15 @@ namespace diagnose
   /// baseline's and extended model's ModelError::coupled and out.coupled_gain.
   void simulate(const std::vector<SimulatorTarget> &targets, const Options &options,
                 Diagnosis &out);
+
+  /// The length [in units of D] by which ends held by platen friction shorten a cylinder's
+  /// platen-read compliance: its platen displacement is (q / E) (L - c D) where elastic free
+  /// slip gives (q / E) L. Rigid platens holding the end faces (no slip: platen friction of 0.3
+  /// and more holds them) confine an end zone about a diameter long whose stiffening does not
+  /// depend on L; c = nu^2 (0.526 + 0.022 nu + 0.476 nu^2), fitted to the finite element
+  /// solution of `cosim reference --interface bonded` (elastic, mesh 16, L/D 1, nu 0.1-0.4:
+  /// within 0.12 % of c; at L/D 1/2 and 2, nu 0.25, the same c within 2 %).
+  double held_end_shortening(double nu);
 
   /// Strain of the specimen axis at deviatoric stress q on top of confinement s3 under the
   /// crack-closure law (compression +) [-]; plain q / E when the ratio r = E0/E is 1.

@@ -12,17 +12,18 @@
 // far below the effects hidden here. Two specimens per data set (the two the baseline misses
 // most) on one thread keep each test at 1-25 s. One seed per effect (seed 1, fixed in advance);
 // COSIM_DISCOVERY_SEEDS runs others.
-// End friction is disabled: the simulator's platen friction lowers the strength of a
-// Mohr-Coulomb cylinder (README, Known limitations) where Siebel's law of the generator (and the
-// laboratory) raises it. Measured on seed 1: the one specimen the baseline misses by more than
-// three SDs, a short one (L/D = 1/2), peaks at 112 MPa with the fitted mu against 129 measured
-// (baseline 110): held-out gain 0.43. --gtest_also_run_disabled_tests runs it.
+// End friction is simulated on a heterogeneous crack-band rock (Weibull m 10 on 5 mm cells; a
+// homogeneous cylinder held at its ends fails at its rims first and is weakened by friction:
+// README, Known limitations), the mean of three rocks, scaled to the extended model's standard
+// specimen; the generator's friction-held ends also stiffen the curves (held_ends.h).
 // Measured gains on seed 1 (two specimens each): tension cut-off 21.4, envelope curvature 46.1,
-// machine compliance 21.1, crack closure 51.7, loading rate 11.7, size (heterogeneity) 14.9.
+// machine compliance 21.1, crack closure 51.7, loading rate 11.7, size (heterogeneity) 14.9, end
+// friction 6.40 (the short specimen: peak 129.4 MPa measured, baseline 110.3, extended 127.4).
 #include "draws.h"
 #include "generator.h"
 
 #include <app/diagnose_command.h>
+#include <coupling/case_parameters.h>
 #include <diagnose/diagnose.h>
 
 #include <gtest/gtest.h>
@@ -55,7 +56,10 @@ namespace
   }
 
   /// Diagnoses a data set with `effect` hidden, with coupled runs; prints a "[ result ]" line.
-  Diagnosis run(const std::string &effect, unsigned seed, double spacing)
+  /// `alter` (if any) changes each case the simulator runs after it is read.
+  Diagnosis run(const std::string &effect, unsigned seed, double spacing,
+                const std::function<void(const std::vector<std::string> &,
+                                         coupling::CaseParameters &)> &alter = {})
   {
     auto t = base(seed);
     hide(t, effect, seed);
@@ -71,6 +75,12 @@ namespace
     o.coupled_spacing = spacing;
     o.max_simulations = 2;
     o.read_case       = app::case_reader(defaults);
+    if (alter)
+      o.read_case = [plain = o.read_case, alter](const std::vector<std::string> &overrides,
+                                                 coupling::CaseParameters &c, std::string &text) {
+        plain(overrides, c, text);
+        alter(overrides, c);
+      };
     const Diagnosis d = diagnose::diagnose(read_data(dir), o);
     std::ostringstream line;
     line << "[ result ] coupled " << effect << " seed " << seed << ": identified";
@@ -177,23 +187,31 @@ TEST(DiscoveryCoupled, BtsDisplacementAtPeakIsJudgedByTheSimulator)
 }
 
 // Where the extended case does worse than the baseline in the simulator, the report says so and
-// names the specimen: with end friction hidden the simulator's friction weakens the cylinder
-// (the disabled test below), and the note must say where (seed 1: s1, error 7.9 -> 18.5).
+// names the specimen: the extended cases of an end-friction diagnosis (those with platen
+// friction) are run with a rock 20 % softer than they state, so that their curves miss by far
+// more than the data's 0.2 % noise while the baselines are untouched.
 TEST(DiscoveryCoupled, SaysWhereTheSimulatorDoesWorseThanTheBaseline)
 {
-  const Diagnosis d = run("end_friction", 1, 0.005);
+  const Diagnosis d = run("end_friction", 1, 0.005,
+                          [](const std::vector<std::string> &overrides, coupling::CaseParameters &c) {
+                            for (const auto &line : overrides)
+                              if (line.rfind("Platens/Friction coefficient=", 0) == 0)
+                                c.rock.youngs_modulus *= 0.8;
+                          });
   std::string notes;
   for (const auto &n : d.notes)
     notes += n + "\n";
+  int worse_ones = 0;
   for (std::size_t i = 0; i < d.simulations.size(); ++i)
   {
     const Simulation &m = d.simulations[i];
     const bool worse    = m.extended.error > 1.05 * m.baseline.error + 0.5; // the rule's margin
     const std::string s = simulation_stem(i) + " (" + m.name;
     EXPECT_EQ(worse, notes.find(s) != std::string::npos) << s << "\n" << notes;
+    worse_ones += worse;
   }
-  if (d.coupled_gain < 1)
-    EXPECT_NE(notes.find("worse than the baseline"), std::string::npos) << notes;
+  EXPECT_GE(worse_ones, 1) << notes; // the softened rock does worse somewhere
+  EXPECT_NE(notes.find("worse than the baseline"), std::string::npos) << notes;
 }
 
 TEST(DiscoveryCoupled, TensionCutoff) { expect_gain("tension_cutoff"); }
@@ -201,7 +219,7 @@ TEST(DiscoveryCoupled, EnvelopeCurvature) { expect_gain("envelope_curvature"); }
 TEST(DiscoveryCoupled, MachineCompliance) { expect_gain("machine_compliance"); }
 TEST(DiscoveryCoupled, CrackClosure) { expect_gain("crack_closure"); }
 TEST(DiscoveryCoupled, LoadingRate) { expect_gain("loading_rate"); }
-TEST(DiscoveryCoupled, DISABLED_EndFriction) { expect_gain("end_friction"); }
+TEST(DiscoveryCoupled, EndFriction) { expect_gain("end_friction"); }
 // the size study's 100 and 150 mm cores at 10 mm, 10 and 15 particles across (at 5 mm they are
 // 20 across, 12,600 particles each, and the test takes three minutes)
 TEST(DiscoveryCoupled, Heterogeneity) { expect_gain("heterogeneity", 0.01); }
