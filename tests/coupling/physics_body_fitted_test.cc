@@ -3,14 +3,20 @@
 // elastic round disc carries its rim load as the line-load solution's centre stresses say (it does
 // not split from its centre: on flat platens it fails at the contact first, cases/bts/README.md),
 // and the elastic flattened disc carries the load on its flats as Hondros's solution says.
+#include "hondros.h"
 #include "run_helpers.h"
 
+#include <coupling/reference_disc.h>
 #include <coupling/run_case.h>
 #include <sph/fitted_bodies.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <map>
 
 using namespace coupling;
 using namespace coupling::test;
@@ -149,23 +155,68 @@ TEST(CoupledBodyFitted, ElasticDiscCarriesTheRimLoadAsTheLineLoadSolution)
 
 namespace
 {
-  /// Hondros's plane-stress field of a disc of radius 1 loaded by a uniform pressure over the
-  /// arcs |theta| <= a about both ends of the z axis (theta from +z), per T = 2P/(pi D t):
-  /// (sigma_xx, sigma_zz) at (x, z). The series in rho^(2n-2), summed to 1e-12 (rho <= 0.5).
-  std::pair<double, double> hondros(const double x, const double z, const double a)
+  /// The flattened disc's tension across the loaded diameter on its mid-plane and on its faces
+  /// against the 3-D elastic FE reference (coupling/reference_disc.h, 3 refinements; Hondros's
+  /// arcs, not flats: the same load away from the rim). The 25 mm thick disc is not plane: its
+  /// faces carry 1.2 T at half the radius, its mid-plane 0.67 T.
+  void through_the_thickness(const CaseParameters &p, const ElasticDisc &d, const double a,
+                             const double dx)
   {
-    const double rho = std::hypot(x, z), th = std::atan2(x, z);
-    double       sr = a, st = a, tau = 0, pw = 1; // pw = rho^(2n-2)
-    for (int n = 1; n < 400 && pw > 1e-13; ++n, pw *= rho * rho)
-      {
-        const double c = pw * std::sin(2 * n * a), r2 = rho * rho;
-        sr += (1 - (1 - 1.0 / n) * r2) * c * std::cos(2 * n * th);
-        st -= (1 - (1 + 1.0 / n) * r2) * c * std::cos(2 * n * th);
-        tau += (1 - r2) * c * std::sin(2 * n * th);
-      }
-    sr *= -1 / a, st *= -1 / a, tau *= 1 / a; // 2p/pi = T/a for p = P/(2 a R t)
-    const double s = std::sin(th), c = std::cos(th);
-    return {sr * s * s + st * c * c + 2 * tau * s * c, sr * c * c + st * s * s - 2 * tau * s * c};
+    const ParticleSnapshot &q   = d.run.particles;
+    const sph::Lattice<3>  &set = d.set;
+    // the particles on the loaded diameter (x = 0), by ring (rho) and layer (y)
+    double y_lo = 1e300, y_hi = -1e300;
+    for (const auto &x : set.positions)
+      y_lo = std::min(y_lo, x[1]), y_hi = std::max(y_hi, x[1]);
+    const double R = 0.5 * p.diameter, t = y_hi - y_lo + dx; // layers dx / 2 inside the faces
+    std::map<long, std::array<double, 4>> rings; // rho key -> mid sum, mid n, face sum, face n
+    for (std::size_t i = 0; i < q.n; ++i)
+    {
+      const auto &x = set.positions[i];
+      if (std::abs(x[0]) > 1e-9)
+        continue;
+      const double rho = std::abs(x[2] - R) / R, y = x[1] - 0.5 * (y_lo + y_hi); // from the mid-plane
+      if (rho > 0.85)
+        continue;
+      auto &r = rings[std::lround(rho * 1e4)];
+      if (std::abs(y) < 0.6 * dx)
+        r[0] += q.stress[6 * i], r[1] += 1;
+      if (std::abs(y) > 0.5 * t - 0.6 * dx)
+        r[2] += q.stress[6 * i], r[3] += 1;
+    }
+    std::vector<double> rho;
+    for (const auto &[k, r] : rings)
+      if (r[1] > 0 && r[3] > 0)
+        rho.push_back(k * 1e-4);
+    const DiscReferenceProfile fe = elastic_disc_reference(p.diameter, t, a, p.rock.youngs_modulus,
+                                                           p.rock.poissons_ratio, 1e5, rho, 3, 0.5 * dx);
+    const double T_fe = 2 * fe.load / (3.14159265358979323846 * p.diameter * t);
+    double ss_mid = 0, ss_face = 0, n = 0, ratio_sph = 0, ratio_fe = 0, rho_ratio = 0;
+    for (std::size_t k = 0; k < rho.size(); ++k)
+    {
+      const auto &r      = rings[std::lround(rho[k] * 1e4)];
+      const double mid   = r[0] / r[1] / d.T, face = r[2] / r[3] / d.T;
+      const double f_mid = fe.mid[k] / T_fe, f_face = fe.face[k] / T_fe;
+      std::printf("rho %.3f: SPH mid %.3f face %.3f; FE mid %.3f face %.3f\n", rho[k], mid, face,
+                  f_mid, f_face);
+      // away from the centre column (the ring set's zero-order residual under-stresses it:
+      // 0.70 against 0.90 T) and from the rim (flats here, arcs there)
+      if (rho[k] < 0.07 || rho[k] > 0.65)
+        continue;
+      ss_mid += std::pow(mid - f_mid, 2), ss_face += std::pow(face - f_face, 2), n += 1;
+      if (std::abs(rho[k] - 0.5) < std::abs(rho_ratio - 0.5))
+        rho_ratio = rho[k], ratio_sph = face / mid, ratio_fe = f_face / f_mid;
+    }
+    ASSERT_GE(n, 8.0);
+    // 6 % of T RMS over rho 0.1-0.63: the FE profile moves 3 % of T between 2 and 3
+    // refinements, the SPH field 2-5 % with its spacing; measured 3.5 % (mid-plane) and 2.9 %
+    // (face layer, dx / 2 inside the face); Hondros's plane field would be 10-40 % off both
+    EXPECT_LT(std::sqrt(ss_mid / n), 0.06);
+    EXPECT_LT(std::sqrt(ss_face / n), 0.06);
+    // the faces carry much more tension than the mid-plane at half the radius: measured 1.71
+    // (SPH) against 1.71 (FE) at rho 0.53; 10 %
+    EXPECT_NEAR(ratio_sph / ratio_fe, 1.0, 0.1) << "rho " << rho_ratio;
+    EXPECT_GT(ratio_fe, 1.5);
   }
 } // namespace
 
@@ -207,5 +258,7 @@ TEST(CoupledBodyFitted, ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays)
       ASSERT_GT(v, 0.0);
       EXPECT_NEAR(sxx / hxx, 1.0, tol) << "dx " << dx;
       EXPECT_NEAR(szz / hzz, 1.0, tol) << "dx " << dx;
+      if (dx < 2e-3)
+        through_the_thickness(p, d, a, dx);
     }
 }
