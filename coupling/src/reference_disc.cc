@@ -164,7 +164,12 @@ namespace coupling
         std::vector<Tensor<1, 3>> grad(3);
         VectorTools::point_gradient(mapping, dof, u, Point<3>(0, r * R, z), grad);
         const double div = grad[0][0] + grad[1][1] + grad[2][2];
-        (z == 0 ? out.mid : out.face).push_back(lambda * div + 2 * mu * grad[0][0]);
+        const std::array<double, 6> sigma{
+          {lambda * div + 2 * mu * grad[0][0], lambda * div + 2 * mu * grad[1][1],
+           lambda * div + 2 * mu * grad[2][2], mu * (grad[0][1] + grad[1][0]),
+           mu * (grad[1][2] + grad[2][1]), mu * (grad[0][2] + grad[2][0])}};
+        (z == 0 ? out.mid : out.face).push_back(sigma[0]);
+        (z == 0 ? out.mid_stress : out.face_stress).push_back(sigma);
       }
     }
     return out;

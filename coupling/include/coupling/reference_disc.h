@@ -7,6 +7,7 @@
 /// tells how the tension across the loaded diameter varies through the thickness, which a plane
 /// solution (Hondros) cannot. No deal.II types here.
 
+#include <array>
 #include <vector>
 
 namespace coupling
@@ -17,6 +18,9 @@ namespace coupling
     std::vector<double> rho;      ///< distance from the centre along the loaded diameter / R [-]
     std::vector<double> mid;      ///< sigma (normal to the load, in the disc's plane) on the mid-plane
     std::vector<double> face;     ///< the same on a face (face_depth inside it)
+    /// The whole stress at the same points: xx (across the load), yy (along it), zz (through
+    /// the thickness), xy, yz, xz [Pa, tension +]
+    std::vector<std::array<double, 6>> mid_stress, face_stress;
     /// The resultant of each arc's pressure as applied [N]: the quadrature cuts the arc's ends
     /// (0.94 / 1.03 P at 2 / 3 refinements); normalise by it
     double load = 0;
