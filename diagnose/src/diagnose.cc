@@ -671,8 +671,9 @@ namespace diagnose
         r.friction  = v.at("mu");
         r.weibull_m = 10;
         r.notes.push_back("end friction: mu " + std::to_string(r.friction) +
-                          " on a heterogeneous rock (Weibull m 10, crack-band softening), its "
-                          "strengths scaled to the standard specimen's strength; the mean of "
+                          " on a heterogeneous rock (Weibull m 10, crack-band softening) whose "
+                          "brittleness (Rock/Fracture energy) and strengths the simulator fitted "
+                          "to the extended model's standard and shortest specimens; the mean of "
                           "three rocks (Rock/Scatter seed 1-3), of which this file is the first");
       }
       if (has("heterogeneity"))
