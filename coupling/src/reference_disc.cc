@@ -153,9 +153,7 @@ namespace coupling
     constraints.distribute(u);
 
     DiscReferenceProfile out;
-    out.load         = 4 * applied;
-    out.n_dofs       = dof.n_dofs();
-    out.n_iterations = control.last_step();
+    out.load = 4 * applied;
     for (const double r : rho)
     {
       out.rho.push_back(r);
@@ -168,7 +166,6 @@ namespace coupling
           {lambda * div + 2 * mu * grad[0][0], lambda * div + 2 * mu * grad[1][1],
            lambda * div + 2 * mu * grad[2][2], mu * (grad[0][1] + grad[1][0]),
            mu * (grad[1][2] + grad[2][1]), mu * (grad[0][2] + grad[2][0])}};
-        (z == 0 ? out.mid : out.face).push_back(sigma[0]);
         (z == 0 ? out.mid_stress : out.face_stress).push_back(sigma);
       }
     }

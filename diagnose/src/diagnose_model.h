@@ -132,7 +132,7 @@ namespace diagnose
     /// The strength scale found by simulate() [-]
     double calibration_factor = 1;
     /// The heterogeneous rock's characteristic length E G_I / f_t^2 [m] (its fracture energy
-    /// follows at any strength); 0: the case's own rock's
+    /// follows at any strength), found by simulate()
     double characteristic_length = 0;
     std::vector<std::string> notes; ///< comment lines for the case file
   };

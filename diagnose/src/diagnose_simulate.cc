@@ -37,8 +37,8 @@ namespace diagnose
     }
 
     /// Rocks of a heterogeneous case whose mean is its result (Rock/Scatter seed 1, 2, 3): one
-    /// rock's end-friction effect on a short specimen moves by +-5 % (seed 1-3, mu 0.32, L/D 1/2:
-    /// 1.085 / 1.191 / 1.169 x its standard specimen)
+    /// rock's end-friction effect on a short specimen moves by +-5 % (seed 1-3, mu 0.32, L/D 1/2,
+    /// G_I 100 J/m^2: 1.085 / 1.191 / 1.169 x its standard specimen)
     constexpr int realisations = 3;
 
     /// The edge of the heterogeneous rock's strength cells [m]: 5 mm, fixed in space (a finer
@@ -129,15 +129,12 @@ namespace diagnose
       return force <= f.front() ? d.front() : d[ip];
     }
 
-    /// The characteristic length E G_I / f_t^2 of the case's own rock [m] (the default case's M1
-    /// basalt at 100 J/m^2: 40.8 mm).
-    double own_characteristic_length(const Options &options)
+    /// The characteristic length E G_I / f_t^2 of a case's rock [m] (the default case's M1 basalt
+    /// at 100 J/m^2: 40.8 mm).
+    double characteristic_length(const coupling::CaseParameters &c)
     {
-      coupling::CaseParameters own;
-      std::string unused;
-      options.read_case({}, own, unused);
-      const double f_t = sph::rock::uniaxial_tensile_strength(own.rock);
-      return own.rock.youngs_modulus * own.rock.fracture_energy / (f_t * f_t);
+      const double f_t = sph::rock::uniaxial_tensile_strength(c.rock);
+      return c.rock.youngs_modulus * c.rock.fracture_energy / (f_t * f_t);
     }
 
     /// Runs a case: its case file (without the header), curve and peak; no errors yet.
@@ -152,9 +149,10 @@ namespace diagnose
         // the heterogeneous rock's brittleness is its characteristic length E G_I / f_t^2 (so
         // that a strength scale k scales G_I by k^2); this rock's f_t is read without the crack
         // band (whose check needs its G_I)
+        if (!(r.characteristic_length > 0))
+          throw std::logic_error("diagnose: a heterogeneous rock runs with its characteristic length");
+        const double l_ch = r.characteristic_length;
         std::string unused;
-        const double l_ch = r.characteristic_length > 0 ? r.characteristic_length
-                                                        : own_characteristic_length(options);
         std::vector<std::string> plain;
         for (const auto &line : overrides)
           if (line.rfind("Rock/Softening law=", 0) != 0)
@@ -354,7 +352,7 @@ namespace diagnose
         unit.strength_factor           = 1;
         unit.calibration_factor        = 1;
         std::string key;
-        for (const auto &line : overrides_of(standard, unit, dx))
+        for (const auto &line : overrides_of(standard, unit, dx_standard))
           key += line + "\n";
         key += num(r.short_peak) + " " + num(r.calibration_peak) + " " + num(r.short_diameter) +
                " " + num(r.short_length);
@@ -377,12 +375,13 @@ namespace diagnose
           // from the last fit's l (first: the case's rock's), steps of x4 until the ratio is
           // bracketed, then regula falsi (Illinois) on log l to 0.3 % of the ratio (a seventh of
           // the data's strength noise)
-          coupling::CaseParameters own;
+          coupling::CaseParameters own; // the case's own rock and numerics
           std::string unused;
           options.read_case({}, own, unused);
           const double band = sph::rock::crack_band_width(std::max(dx_standard, dx_short), own.sph.cslh);
           const double x_min = std::log(0.55 * band), x_max = std::log(1.0);
-          double x = std::clamp(std::log(last_l > 0 ? last_l : own_characteristic_length(options)),
+          // a fit starts from the last fit's l; without one (no short specimen) l is the case's
+          double x = std::clamp(std::log(fit_l && last_l > 0 ? last_l : characteristic_length(own)),
                                 x_min, x_max);
           if (fit_l)
           {

@@ -196,7 +196,7 @@ namespace
     {
       const auto &r      = rings[std::lround(rho[k] * 1e4)];
       const double mid   = r[0] / r[1] / d.T, face = r[2] / r[3] / d.T;
-      const double f_mid = fe.mid[k] / T_fe, f_face = fe.face[k] / T_fe;
+      const double f_mid = fe.mid_stress[k][0] / T_fe, f_face = fe.face_stress[k][0] / T_fe;
       std::printf("rho %.3f: SPH mid %.3f face %.3f; FE mid %.3f face %.3f\n", rho[k], mid, face,
                   f_mid, f_face);
       // away from the centre column (the ring set's zero-order residual under-stresses it:
