@@ -237,8 +237,7 @@ namespace sph
     const KernelType kernel = prm_.kernel;
     // total Lagrangian: pairs are built once, in the reference configuration, so the hourglass
     // factor hg V0_i V0_j W(|X_ij|) / |X_ij|^2 is a constant of the pair (cached pair geometry)
-    const bool   tl = total_lagrangian();
-    const double hg = tl ? prm_.hourglass * material_.youngs_modulus : 0.0;
+    const bool tl = total_lagrangian();
     hg_factor_.resize(tl ? n_p : 0);
 #pragma omp parallel for num_threads(n_threads_) schedule(static)
     for (long p = 0; p < static_cast<long>(n_p); ++p)
@@ -257,11 +256,7 @@ namespace sph
               grad_w_[p][d]                = rounded;
             }
         if (tl)
-          {
-            const double X2 = (p_.x0[j] - p_.x0[i]).squaredNorm();
-            const double W0 = kernels::w<dim>(kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
-            hg_factor_[p] = X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
-          }
+          hg_factor_[p] = intact_hourglass_factor(p);
       }
     constexpr int pair_size = pair_kernel::mixed::pair_size;
     pair_float_.resize(mixed_ ? pair_size * n_p : 0);
@@ -276,7 +271,54 @@ namespace sph
         }
     if (mixed_) // every pair force reads the float copy: 8 bytes a pair less to hold
       std::vector<double>().swap(hg_factor_);
+    hg_faded_.assign(tl && prm_.hourglass_fade ? p_.size() : 0, 0);
     partition_pairs();
+  }
+
+  template <int dim>
+  double Body<dim>::intact_hourglass_factor(const std::size_t p) const
+  {
+    const int    i  = pairs_.first[p], j = pairs_.second[p];
+    const double X2 = (p_.x0[j] - p_.x0[i]).squaredNorm();
+    const double W0 = kernels::w<dim>(prm_.kernel, std::sqrt(X2), 0.5 * (p_.h[i] + p_.h[j]));
+    const double hg = prm_.hourglass * material_.youngs_modulus;
+    return X2 > 0 ? hg * p_.volume0[i] * p_.volume0[j] * W0 / X2 : 0.0;
+  }
+
+  template <int dim>
+  void Body<dim>::set_hourglass_factor(const std::size_t p, const double factor)
+  {
+    constexpr int stride = pair_kernel::mixed::pair_size;
+    if (mixed_)
+      pair_float_[stride * p + stride - 1] = static_cast<float>(factor);
+    else
+      hg_factor_[p] = factor;
+  }
+
+  template <int dim>
+  void Body<dim>::fade_hourglass()
+  {
+    // Ganzenmueller's hourglass force holds a pair at the separation the mean of the two
+    // deformation gradients predicts; across a crack that is a spring of stiffness ~0.1 E
+    // between the faces (a direct tension bar with the default 0.1 keeps 30 % of its strength
+    // after its band has broken, and dissipates 1.6-1.7 G_I). The particles of a softening
+    // band are described by their plastic strain, not by an affine field, so a pair stops
+    // being held once either particle has damage: damage never decreases, so each pair is
+    // faded once, in the pass after its first particle softens (ghosts: their owner's damage,
+    // exchanged with the stress)
+    const std::size_t n = p_.size();
+    bool              fresh = false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!hg_faded_[i] && damage_now_[i] > 0)
+        hg_faded_[i] = 1, fresh = true;
+    if (!fresh)
+      return;
+    const std::int32_t *first = pairs_.first.data(), *second = pairs_.second.data();
+    const std::uint8_t *faded = hg_faded_.data();
+#pragma omp parallel for num_threads(n_threads_) schedule(static)
+    for (long p = 0; p < static_cast<long>(pairs_.n_pairs()); ++p)
+      if (faded[first[p]] || faded[second[p]])
+        set_hourglass_factor(p, 0.0);
   }
 
   template <int dim>
@@ -1136,16 +1178,28 @@ namespace sph
       update_stress_total_lagrangian();
     else
       update_stress_updated_lagrangian();
+    const bool fade = !hg_faded_.empty();
+    if (fade)
+      {
+        damage_now_.resize(p_.size());
+        for (std::size_t i = 0; i < p_.size(); ++i)
+          damage_now_[i] = p_.history[i].damage;
+      }
     if (domain) // what the pair forces read of the ghosts, from their owners
       {
         require(!read_.empty(), "compute_forces: restrict_to_owned(domain) first");
         static_assert(sizeof(Tensor<dim>) == dim * dim * sizeof(double) &&
                       sizeof(Tensor3) == 9 * sizeof(double));
-        domain->exchange({{Q_.front().data(), dim * dim},
-                          {p_.F.front().data(), dim * dim},
-                          {p_.stress.front().data(), 9},
-                          {p_.density.data(), 1}});
+        std::vector<std::pair<double *, int>> fields = {{Q_.front().data(), dim * dim},
+                                                        {p_.F.front().data(), dim * dim},
+                                                        {p_.stress.front().data(), 9},
+                                                        {p_.density.data(), 1}};
+        if (fade)
+          fields.push_back({damage_now_.data(), 1});
+        domain->exchange(fields);
       }
+    if (fade)
+      fade_hourglass();
     pair_forces();
   }
 

@@ -138,6 +138,13 @@ namespace sph
       p_.history[i].failure_mode   = static_cast<FailureMode>(static_cast<int>(mode[i]));
       constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
     }
+    // the hourglass factors of the loaded damage, faded afresh in the next force pass
+    if (!hg_faded_.empty())
+      {
+        for (std::size_t p = 0; p < pairs_.n_pairs(); ++p)
+          set_hourglass_factor(p, intact_hourglass_factor(p));
+        std::fill(hg_faded_.begin(), hg_faded_.end(), 0);
+      }
   }
 
   template class Body<2>;

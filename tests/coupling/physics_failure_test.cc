@@ -121,8 +121,8 @@ TEST(CoupledBts, FlattenedDiscSplitsFromItsCentreWhereMohrCoulombSays)
 // body-fitted): the platens press the true flats at every spacing, and the elastic field is
 // Hondros's (CoupledBodyFitted.ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays; the lattice
 // disc above is 12 % low in the centre's tension at 1.25 mm, which is why its onset sits on the
-// plane closed form). The Mohr-Coulomb disc's peak converges: 12.85 / 12.92 / 12.87 MPa at
-// 1.25 / 1 / 0.8 mm (12.21 at 2.5 mm). It is 6 % below the plane closed form (13.76 MPa)
+// plane closed form). The Mohr-Coulomb disc's peak converges: 12.63 / 12.75 / 12.71 MPa at
+// 1.25 / 1 / 0.8 mm (11.91 at 2.5 mm). It is 6 % below the plane closed form (13.76 MPa)
 // because the 25 mm thick disc's faces carry 1.3 times its mid-plane's tension (elastic, 1 mm),
 // and the first damage is at the flats' corners (r/R 1), where a rigid flat punch's pressure
 // is singular.
@@ -139,7 +139,8 @@ TEST(CoupledBts, FlattenedBodyFittedDiscConvergesInSpacing)
       EXPECT_GT(extra(s[k], "crack_alignment"), 3.0);
     }
   // the two finest the suite can afford: 1 %, the bound asked of a converged strength
-  // (measured 0.58 %; the lattice disc's flattened peaks move 2.7 % between them)
+  // (measured 0.95 %; 0.58 % with hourglass forces across the softening particles; the
+  // lattice disc's flattened peaks move 2.7 % between them)
   EXPECT_NEAR(s[1].peak_stress / s[0].peak_stress, 1.0, 0.01);
 }
 
