@@ -2,7 +2,8 @@
 # Runs the studies of cases/studies with `cosim study` and copies each study.csv / study.png into
 # docs/results/studies/<name>/ (the per-run folders stay in results/studies/<name>/).
 # usage: cases/studies/run_studies.sh [NAME ...]   (no NAME: all, in the order below)
-# Environment: COSIM (default build/bin/cosim), EXTRA (more cosim options, e.g. --set ...),
+# Environment: COSIM (default build/bin/cosim), EXTRA (more cosim options, quoted as on a
+# command line, e.g. EXTRA='--set "SPH/Hourglass fading=false"'),
 # SPACING (a particle spacing [m] for every run of the study), SUFFIX (appended to the study's
 # folder names), e.g. SPACING=0.005 SUFFIX=-5mm.
 set -euo pipefail
@@ -20,12 +21,13 @@ steel=(--set "Platens/Model=elastic")
 rollers=("${steel[@]}" --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller")
 fitted=(--set "SPH/Particle arrangement=body-fitted")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
+eval "extra=(${EXTRA:-})" # keys with spaces stay one word
 
 study() { # NAME CASE ARGS...
   local name=$1${SUFFIX:-} case=$2
   shift 2
   echo "== $name: cosim study $case $* -o results/studies/$name --force" >&2
-  "$cosim" study "$case" "$@" "${quick[@]}" ${EXTRA:-} -o "results/studies/$name" --force || true
+  "$cosim" study "$case" "$@" "${quick[@]}" "${extra[@]}" -o "results/studies/$name" --force || true
   mkdir -p "docs/results/studies/$name"
   for f in study.csv study.png; do
     if [ -f "results/studies/$name/$f" ]; then cp "results/studies/$name/$f" "docs/results/studies/$name/"; fi
