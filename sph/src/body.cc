@@ -306,19 +306,16 @@ namespace sph
     // being held once either particle has damage: damage never decreases, so each pair is
     // faded once, in the pass after its first particle softens (ghosts: their owner's damage,
     // exchanged with the stress)
+    // (the pairs of the particles that began to soften since the last pass, through their
+    // incidence lists: a pass over every pair each step cost 8 % of a flattened disc's run)
     const std::size_t n = p_.size();
-    bool              fresh = false;
     for (std::size_t i = 0; i < n; ++i)
       if (!hg_faded_[i] && damage_now_[i] > 0)
-        hg_faded_[i] = 1, fresh = true;
-    if (!fresh)
-      return;
-    const std::int32_t *first = pairs_.first.data(), *second = pairs_.second.data();
-    const std::uint8_t *faded = hg_faded_.data();
-#pragma omp parallel for num_threads(n_threads_) schedule(static)
-    for (long p = 0; p < static_cast<long>(pairs_.n_pairs()); ++p)
-      if (faded[first[p]] || faded[second[p]])
-        set_hourglass_factor(p, 0.0);
+        {
+          hg_faded_[i] = 1;
+          for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+            set_hourglass_factor(pairs_.incidence[k], 0.0);
+        }
   }
 
   template <int dim>
