@@ -506,4 +506,51 @@ namespace
         EXPECT_THROW(b.load_state(broken, "rock."), std::invalid_argument);
       }
   }
+
+  TEST(SphBody, LoadStateRestoresTheHourglassControlOfItsDamage)
+  {
+    // Hourglass control acts between intact particles only (Parameters::hourglass_fade): a body
+    // that ran on past a saved state has faded the pairs of particles that softened since. The
+    // state loaded back into it must continue as in a fresh body, bit for bit
+    const Lattice<3>         lat = make_cylinder<3>(0.01, 0.02, 0.001);
+    const Parameters         p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
+    MaterialParameters       m   = weak_mohr_coulomb();
+    m.softening_strain           = 1e-3; // softening, so that damage fades hourglass control
+    Body<3>                  a(p, m, lat.positions, lat.volumes), b(p, m, lat.positions, lat.volumes);
+    const auto press = [](Body<3> &body) {
+      for (unsigned i = 0; i < body.n_particles(); ++i)
+        if (body.reference_positions()[i][2] > 0.019)
+          body.constrain(i, 2, -1.0);
+    };
+    const auto run = [](Body<3> &body, const int steps) {
+      for (int s = 0; s < steps; ++s)
+        {
+          body.compute_forces();
+          body.integrate(body.stable_time_step());
+        }
+    };
+    const auto softened = [](const Body<3> &body) {
+      unsigned n = 0;
+      for (unsigned i = 0; i < body.n_particles(); ++i)
+        n += body.damage(i) > 0 ? 1 : 0;
+      return n;
+    };
+    press(a);
+    run(a, 15);
+    StateArrays saved;
+    a.save_state(saved, "rock.");
+    const unsigned before = softened(a);
+    run(a, 30);
+    // the test needs particles that softened after the save (measured: 1,116 then 1,304; without
+    // the restore in load_state the positions then differ)
+    ASSERT_GT(softened(a), before + 10);
+    for (Body<3> *body : {&a, &b})
+      {
+        body->load_state(saved, "rock.");
+        press(*body);
+        run(*body, 15);
+      }
+    EXPECT_EQ(0, std::memcmp(a.positions().data(), b.positions().data(),
+                             a.positions().size() * sizeof(Vector<3>)));
+  }
 } // namespace
