@@ -77,6 +77,9 @@ run() {
     # the reference study's flattened disc, body-fitted, at its converged 1.25 mm
     bts-flattened-spacing) study bts-flattened-spacing $flat \
                     --vary "SPH/Particle spacing=0.0025,0.00125,0.001,0.0008" ;;
+    # hourglass control's coefficient /4 x4, faded in softening particles (the default) or not
+    bts-flattened-hourglass) study bts-flattened-hourglass $flat \
+                    --vary "SPH/Hourglass coefficient=0.025,0.1,0.4" --vary "SPH/Hourglass fading=true,false" ;;
     platens-bts-flattened) study platens-bts-flattened $flat --vary "Platens/Model=rigid,elastic" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
     platens-bts-flattened-bonded) study platens-bts-flattened-bonded $flat --set "Platens/Bonded=true" \
@@ -214,7 +217,7 @@ all=(bts-groups bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      bts-flattened-spacing platens-bts-flattened platens-bts-flattened-bonded
      envelope-cutoff-bts-M10 envelope-cutoff-ctcs-M8 envelope-cutoff-ctcs-M9 envelope-cutoff-ctcs-M10
      basalt-ucs-compliance envelope-ucs envelope-bts envelope-ctcs envelope-bts-softening
-     heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
+     bts-flattened-hourglass heterogeneous-ucs-spacing heterogeneous-ucs-1mm heterogeneous-ucs-platens heterogeneous-ucs-bonded
      heterogeneous-calibrated-ucs-platens heterogeneous-calibrated-ucs-friction-1.25mm
      heterogeneous-ucs-calibrated-friction
      heterogeneous-ucs-strain-softening heterogeneous-bts-spacing heterogeneous-bts-cutoff
