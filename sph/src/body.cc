@@ -300,14 +300,13 @@ namespace sph
   {
     // Ganzenmueller's hourglass force holds a pair at the separation the mean of the two
     // deformation gradients predicts; across a crack that is a spring of stiffness ~0.1 E
-    // between the faces (a direct tension bar with the default 0.1 keeps 30 % of its strength
-    // after its band has broken, and dissipates 1.6-1.7 G_I). The particles of a softening
-    // band are described by their plastic strain, not by an affine field, so a pair stops
-    // being held once either particle has damage: damage never decreases, so each pair is
-    // faded once, in the pass after its first particle softens (ghosts: their owner's damage,
-    // exchanged with the stress)
-    // (the pairs of the particles that began to soften since the last pass, through their
-    // incidence lists: a pass over every pair each step cost 8 % of a flattened disc's run)
+    // between the faces (a direct tension bar with the default 0.1 keeps 29 % of its strength
+    // after its band has broken, and takes 1.56-1.73 G_I). The particles of a softening band
+    // are described by their plastic strain, not by an affine field, so a pair stops being held
+    // once either particle has damage. Damage never decreases, so each pair is faded once: the
+    // pairs of each particle that began to soften since the last pass, through its incidence
+    // list (a pass over every pair cost 8 % of a flattened disc's run); the ghosts' damage is
+    // their owners', exchanged with the stress
     const std::size_t n = p_.size();
     for (std::size_t i = 0; i < n; ++i)
       if (!hg_faded_[i] && damage_now_[i] > 0)
