@@ -38,7 +38,8 @@ namespace diagnose
 
     /// Rocks of a heterogeneous case whose mean is its result (Rock/Scatter seed 1, 2, 3): one
     /// rock's end-friction effect on a short specimen moves by +-5 % (seed 1-3, mu 0.32, L/D 1/2,
-    /// G_I 100 J/m^2: 1.085 / 1.191 / 1.169 x its standard specimen)
+    /// G_I 100 J/m^2: 1.085 / 1.191 / 1.169 x its standard specimen, measured with hourglass
+    /// forces across the softening particles, SPH/Hourglass fading = false)
     constexpr int realisations = 3;
 
     /// The edge of the heterogeneous rock's strength cells [m]: 5 mm, fixed in space (a finer

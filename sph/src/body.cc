@@ -271,7 +271,8 @@ namespace sph
         }
     if (mixed_) // every pair force reads the float copy: 8 bytes a pair less to hold
       std::vector<double>().swap(hg_factor_);
-    hg_faded_.assign(tl && prm_.hourglass_fade ? p_.size() : 0, 0);
+    // (no hourglass control, nothing to fade: no damage copy nor exchange per step)
+    hg_faded_.assign(tl && prm_.hourglass_fade && prm_.hourglass > 0 ? p_.size() : 0, 0);
     partition_pairs();
   }
 

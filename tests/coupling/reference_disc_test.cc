@@ -65,7 +65,7 @@ namespace
 
 // Where Mohr-Coulomb with Table 4's M1 c, phi first fails in the 25 mm thick disc's elastic field
 // (arcs of 2 x 10 deg, the flattened disc's load): on its faces near half the radius, at a
-// nominal stress below the plane centre's 13.74 MPa; the flattened body-fitted disc's first
+// nominal stress below the plane centre's 13.76 MPa; the flattened body-fitted disc's first
 // damage away from its flats' corners is there too (cases/bts/README.md).
 TEST(ReferenceDisc, AThickDiscFirstFailsOnItsFacesUnderMohrCoulomb)
 {
@@ -100,6 +100,9 @@ TEST(ReferenceDisc, AThickDiscFirstFailsOnItsFacesUnderMohrCoulomb)
   // centre at 14.58 MPa, the plane centre 13.76 MPa. The faces well below the plane centre:
   // 0.8 (measured 0.73; the FE field moves 3-5 % between refinements 2 and 3)
   EXPECT_LT(face_min, 0.8 * centre_plane);
+  // where on the face: 0.4-0.75 R, the minimum being shallow (within 4 % from 0.55 to 0.7 R:
+  // 10.37 / 10.02 / 10.14 MPa at 0.55 / 0.65 / 0.7), so that a mesh's 3-5 % can move it a few
+  // samples; not the centre (12.08 MPa there)
   EXPECT_GT(face_rho, 0.4);
   EXPECT_LT(face_rho, 0.75);
   // the mid-plane is less loaded than the plane disc: it fails last, at its centre
