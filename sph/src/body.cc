@@ -302,15 +302,18 @@ namespace sph
     // Ganzenmueller's hourglass force holds a pair at the separation the mean of the two
     // deformation gradients predicts; across a crack that is a spring of stiffness ~0.1 E
     // between the faces (a direct tension bar with the default 0.1 keeps 29 % of its strength
-    // after its band has broken, and takes 1.56-1.73 G_I). The particles of a softening band
+    // after its band has broken, and takes 1.56-1.73 G_I). The particles of an opening band
     // are described by their plastic strain, not by an affine field, so a pair stops being held
-    // once either particle has damage. Damage never decreases, so each pair is faded once: the
-    // pairs of each particle that began to soften since the last pass, through its incidence
-    // list (a pass over every pair cost 8 % of a flattened disc's run); the ghosts' damage is
-    // their owners', exchanged with the stress
+    // once either particle has softened in tension. Particles softening in shear or crushing
+    // stay pressed together and carry load: without the control their zero-energy modes grow
+    // (a ductile heterogeneous short cylinder with end friction ran unstable when every damaged
+    // particle was faded), so they keep it. Cracked never reverts, so each pair is faded once:
+    // the pairs of each particle cracked since the last pass, through its incidence list (a
+    // pass over every pair cost 8 % of a flattened disc's run); the ghosts' flags are their
+    // owners', exchanged with the stress
     const std::size_t n = p_.size();
     for (std::size_t i = 0; i < n; ++i)
-      if (!hg_faded_[i] && damage_now_[i] > 0)
+      if (!hg_faded_[i] && cracked_now_[i] > 0)
         {
           hg_faded_[i] = 1;
           for (std::int32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
@@ -1178,9 +1181,9 @@ namespace sph
     const bool fade = !hg_faded_.empty();
     if (fade)
       {
-        damage_now_.resize(p_.size());
+        cracked_now_.resize(p_.size());
         for (std::size_t i = 0; i < p_.size(); ++i)
-          damage_now_[i] = p_.history[i].damage;
+          cracked_now_[i] = p_.history[i].cracked ? 1.0 : 0.0;
       }
     if (domain) // what the pair forces read of the ghosts, from their owners
       {
@@ -1192,7 +1195,7 @@ namespace sph
                                                         {p_.stress.front().data(), 9},
                                                         {p_.density.data(), 1}};
         if (fade)
-          fields.push_back({damage_now_.data(), 1});
+          fields.push_back({cracked_now_.data(), 1});
         domain->exchange(fields);
       }
     if (fade)

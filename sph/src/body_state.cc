@@ -104,17 +104,19 @@ namespace sph
     for_each_state_field(*this, prefix,
                          [&out](const std::string &name, const auto &field) { pack(out, name, field); });
     const std::size_t   n = p_.size();
-    std::vector<double> plastic(n), damage(n), mode(n), constrained(n);
+    std::vector<double> plastic(n), damage(n), mode(n), cracked(n), constrained(n);
     for (std::size_t i = 0; i < n; ++i)
     {
       plastic[i]     = p_.history[i].plastic_strain;
       damage[i]      = p_.history[i].damage;
       mode[i]        = static_cast<double>(p_.history[i].failure_mode);
+      cracked[i]     = p_.history[i].cracked ? 1.0 : 0.0;
       constrained[i] = constrained_[i];
     }
     out[prefix + "plastic_strain"] = std::move(plastic);
     out[prefix + "damage"]         = std::move(damage);
     out[prefix + "failure_mode"]   = std::move(mode);
+    out[prefix + "cracked"]        = std::move(cracked);
     out[prefix + "constrained"]    = std::move(constrained);
   }
 
@@ -127,6 +129,7 @@ namespace sph
     const auto       &plastic = find(in, prefix + "plastic_strain", n);
     const auto       &damage  = find(in, prefix + "damage", n);
     const auto       &mode    = find(in, prefix + "failure_mode", n);
+    const auto       &cracked = find(in, prefix + "cracked", n);
     const auto       &constr  = find(in, prefix + "constrained", n);
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -136,9 +139,10 @@ namespace sph
       p_.history[i].plastic_strain = plastic[i];
       p_.history[i].damage         = damage[i];
       p_.history[i].failure_mode   = static_cast<FailureMode>(static_cast<int>(mode[i]));
+      p_.history[i].cracked        = cracked[i] != 0;
       constrained_[i]              = static_cast<std::uint8_t>(constr[i]);
     }
-    // the hourglass factors of the loaded damage, faded afresh in the next force pass
+    // the hourglass factors of the loaded cracks, faded afresh in the next force pass
     if (!hg_faded_.empty())
       {
         for (std::size_t p = 0; p < pairs_.n_pairs(); ++p)

@@ -507,20 +507,20 @@ namespace
       }
   }
 
-  TEST(SphBody, LoadStateRestoresTheHourglassControlOfItsDamage)
+  TEST(SphBody, LoadStateRestoresTheHourglassControlOfItsCracks)
   {
-    // Hourglass control acts between intact particles only (Parameters::hourglass_fade): a body
-    // that ran on past a saved state has faded the pairs of particles that softened since. The
-    // state loaded back into it must continue as in a fresh body, bit for bit
+    // No hourglass control across cracks (Parameters::hourglass_fade): a body that ran on past a
+    // saved state has faded the pairs of particles that cracked since. The state loaded back
+    // into it must continue as in a fresh body, bit for bit
     const Lattice<3>         lat = make_cylinder<3>(0.01, 0.02, 0.001);
     const Parameters         p   = numerics(Formulation::total_lagrangian_corrected, 0.001);
     MaterialParameters       m   = weak_mohr_coulomb();
-    m.softening_strain           = 1e-3; // softening, so that damage fades hourglass control
+    m.softening_strain           = 1e-3; // softening, so that cracks fade hourglass control
     Body<3>                  a(p, m, lat.positions, lat.volumes), b(p, m, lat.positions, lat.volumes);
-    const auto press = [](Body<3> &body) {
+    const auto pull = [](Body<3> &body) { // the top end pulled: the rock cracks in tension
       for (unsigned i = 0; i < body.n_particles(); ++i)
         if (body.reference_positions()[i][2] > 0.019)
-          body.constrain(i, 2, -1.0);
+          body.constrain(i, 2, 1.0);
     };
     const auto run = [](Body<3> &body, const int steps) {
       for (int s = 0; s < steps; ++s)
@@ -529,25 +529,26 @@ namespace
           body.integrate(body.stable_time_step());
         }
     };
-    const auto softened = [](const Body<3> &body) {
+    const auto cracked = [](const Body<3> &body) {
       unsigned n = 0;
       for (unsigned i = 0; i < body.n_particles(); ++i)
-        n += body.damage(i) > 0 ? 1 : 0;
+        n += body.history(i).cracked ? 1 : 0;
       return n;
     };
-    press(a);
-    run(a, 15);
+    pull(a);
+    run(a, 4);
     StateArrays saved;
     a.save_state(saved, "rock.");
-    const unsigned before = softened(a);
+    const unsigned before = cracked(a);
     run(a, 30);
-    // the test needs particles that softened after the save (measured: 1,116 then 1,304; without
-    // the restore in load_state the positions then differ)
-    ASSERT_GT(softened(a), before + 10);
+    // the test needs particles that cracked after the save (measured: N1 then N2; without the
+    // restore in load_state the positions then differ)
+    std::printf("cracked %u then %u\n", before, cracked(a));
+    ASSERT_GT(cracked(a), before + 10);
     for (Body<3> *body : {&a, &b})
       {
         body->load_state(saved, "rock.");
-        press(*body);
+        pull(*body);
         run(*body, 15);
       }
     EXPECT_EQ(0, std::memcmp(a.positions().data(), b.positions().data(),

@@ -254,7 +254,7 @@ namespace sph
     void update_stress_batch(const Model &model, const std::int32_t *idx, int n);
     double intact_hourglass_factor(std::size_t p) const; // hg V0_i V0_j W(|X|)/|X|^2 of pair p
     void set_hourglass_factor(std::size_t p, double factor); // the one the pair force reads
-    void fade_hourglass();         // no hourglass force on pairs with damage (damage_now_)
+    void fade_hourglass();         // no hourglass force on pairs of cracked particles (cracked_now_)
     void pair_forces();            // one pass: f_int and f_pressure (loaded faces after it)
     // record_ of particles [begin, end) from the arrays (3-D, vectorised pair force)
     void pack_records(std::int32_t begin, std::int32_t end);
@@ -303,7 +303,7 @@ namespace sph
     std::vector<double>       force_share_;    // per cross pair k: force on its i (scratch)
     std::vector<double>      hg_factor_;  // per pair (TL): hg V0_i V0_j W(|X_ij|)/|X_ij|^2 [N/m in 3-D]
     std::vector<std::uint8_t> hg_faded_;  // per particle (hourglass_fade): its pairs' factors are 0
-    std::vector<double>      damage_now_; // per particle (hourglass_fade): damage, ghosts' exchanged
+    std::vector<double>      cracked_now_; // per particle (hourglass_fade): 1 cracked, ghosts' exchanged
     std::vector<Tensor<dim>> Q_;          // per particle: P L (TL) or sigma L (UL) (L = I if off)
     std::vector<Tensor<dim>> F_prev_;     // per particle: F at the last stress update
     std::vector<Vector<dim>> area0_;      // per particle: surface area vector (TL: reference)

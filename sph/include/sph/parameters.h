@@ -59,9 +59,10 @@ namespace sph
     double      av_alpha    = 1.0;    ///< Monaghan artificial viscosity, linear term [-]
     double      av_beta     = 1.0;    ///< Monaghan artificial viscosity, quadratic term [-]
     double      hourglass   = 0.1;    ///< Ganzenmueller hourglass coefficient (FORM 7, 8) [-]
-    /// Hourglass control between intact particles only (TL forms): a pair loses its hourglass
-    /// force once either particle has begun to soften (damage > 0), so that no hourglass force
-    /// bridges a crack or works in its band (src/body.cc, fade_hourglass)
+    /// No hourglass control across cracks (TL forms): a pair loses its hourglass force once
+    /// either particle has begun to soften in tension (MaterialState::cracked), so that no
+    /// hourglass force bridges an opening crack or works in its band; particles that soften in
+    /// shear or crushing still carry load and keep it (src/body.cc, fade_hourglass)
     bool        hourglass_fade = true;
     int         n_threads   = 0;      ///< OpenMP threads; 0 = omp_get_max_threads()
     /// Work units the threads take one at a time (each pass over the particles is cut into

@@ -27,6 +27,9 @@ namespace sph
     double damage         = 0; ///< softening damage in [0, 1]; never decreases [-]
     double strength       = 1; ///< the particle's strength relative to the rock's (scatter) [-]
     FailureMode failure_mode = FailureMode::none; ///< how the particle failed
+    /// Softened in a tensile return at least once (a crack opened here); never reset. The body
+    /// drops the hourglass control of its pairs (Parameters::hourglass_fade).
+    bool cracked = false;
   };
 
   /// All particle fields, one array per field, indexed by particle number.

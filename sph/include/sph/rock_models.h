@@ -456,6 +456,8 @@ namespace sph::rock
         out.state.damage         = std::max(old_state.damage, d);
         if (old_state.damage < 1.0)
           out.state.failure_mode = mode;
+        out.state.cracked = old_state.cracked ||
+                            (out.state.failure_mode == FailureMode::tensile && out.state.damage > 0);
         return out;
       }
     // the equivalent plastic strain of the return at the damage of a plastic strain increment
@@ -524,6 +526,8 @@ namespace sph::rock
     out.state.damage = std::max(old_state.damage, damage_of(out.state.plastic_strain, prm));
     if (old_state.damage < 1.0)
       out.state.failure_mode = classify(s, old_state.strength, out.state.damage);
+    out.state.cracked = old_state.cracked ||
+                        (out.state.failure_mode == FailureMode::tensile && out.state.damage > 0);
     return out;
   }
 
