@@ -27,7 +27,7 @@ namespace app::keys
     s.add<double>("Hourglass coefficient", n.hourglass, "total-Lagrangian hourglass control [-]",
                   [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1]");
     s.add("Hourglass fading", n.hourglass_fade,
-          "hourglass control between intact particles only: none on a pair once either particle softens");
+          "no hourglass control across cracks: none on a pair once either particle softens in tension");
     s.add("Loaded face correction", p.loaded_face_correction,
           "UCS/CTCS: move the symmetric force's boundary term onto the layer the platen loads");
     s.add_enum("Particle arrangement", p.particle_arrangement, "lattice|body-fitted",

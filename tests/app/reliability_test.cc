@@ -46,10 +46,12 @@ namespace
   {
     long good_step             = -1;
     std::size_t good_particles = 0;
+    std::size_t good_modes     = 0; ///< particles whose failure mode the state holds
     void last_good_state(std::size_t step, double, const coupling::ParticleSnapshot &p) override
     {
       good_step      = static_cast<long>(step);
       good_particles = p.n;
+      good_modes     = p.failure_mode.size();
     }
   };
 
@@ -267,6 +269,7 @@ namespace
       ASSERT_GE(r.good_step, 0) << "no last good state reported";
       // every particle of the 30 mm block, whose outer layers are held
       EXPECT_GT(r.good_particles, 500u);
+      EXPECT_EQ(r.good_modes, r.good_particles) << "the last good state has every failure mode";
       EXPECT_EQ(what.rfind("step " + std::to_string(r.good_step + 1) + ",", 0), 0u) << what;
       for (const char *part : {"likely cause", "TSSFAC", "Cutter/Speed", "last good state: step"})
         EXPECT_NE(what.find(part), std::string::npos) << part << " missing in: " << what;
