@@ -23,7 +23,8 @@ namespace app
   /// 2: fem::SteelBody scalars gained the rigid x velocity and the frame force vector (disc cutter).
   /// 3: per-dataset checksums and the case and program identity.
   /// 4: a checksum per block of each dataset (written by several ranks together).
-  constexpr int checkpoint_version = 4;
+  /// 5: the rock's `cracked` flags (hourglass control dropped across tensile cracks).
+  constexpr int checkpoint_version = 5;
 
   /// Writes `state` to `path` atomically (a temporary file renamed over `path`, so that a crash
   /// while writing leaves the previous checkpoint intact). std::runtime_error on I/O errors.
