@@ -77,7 +77,7 @@ run() {
     # the reference study's flattened disc, body-fitted, at its converged 1.25 mm
     bts-flattened-spacing) study bts-flattened-spacing $flat \
                     --vary "SPH/Particle spacing=0.0025,0.00125,0.001,0.0008" ;;
-    # hourglass control's coefficient /4 x4, faded in softening particles (the default) or not
+    # hourglass control's coefficient /4 x4, dropped across tensile cracks (the default) or not
     bts-flattened-hourglass) study bts-flattened-hourglass $flat \
                     --vary "SPH/Hourglass coefficient=0.025,0.1,0.4" --vary "SPH/Hourglass fading=true,false" ;;
     platens-bts-flattened) study platens-bts-flattened $flat --vary "Platens/Model=rigid,elastic" \

@@ -199,7 +199,8 @@ namespace coupling
       all.stress       = domain->gather(last_good_.stress.data(), 6);
       all.plastic_strain = domain->gather(last_good_.plastic_strain.data(), 1);
       all.damage         = domain->gather(last_good_.damage.data(), 1);
-      for (const double mode : domain->gather(last_good_mode_.data(), 1))
+      const std::vector<double> modes(last_good_.failure_mode.begin(), last_good_.failure_mode.end());
+      for (const double mode : domain->gather(modes.data(), 1))
         all.failure_mode.push_back(static_cast<int>(mode));
       observer.last_good_state(last_good_step_, last_good_time_, all);
       throw InstabilityError(os.str());
@@ -444,7 +445,6 @@ namespace coupling
     last_good_.plastic_strain.resize(n);
     last_good_.damage.resize(n);
     last_good_.failure_mode.resize(n);
-    last_good_mode_.resize(n);
     // a distributed rock: the owned particles' rows (the only ones gathered in `fail`)
     const std::uint8_t *owned = watch_.domain ? watch_.domain->owned().data() : nullptr;
 #pragma omp parallel for schedule(static)
@@ -464,7 +464,6 @@ namespace coupling
       last_good_.plastic_strain[i] = body.plastic_strain(i);
       last_good_.damage[i]         = body.damage(i);
       last_good_.failure_mode[i]   = static_cast<int>(body.history(i).failure_mode);
-      last_good_mode_[i]           = last_good_.failure_mode[i];
     }
     last_good_step_ = test_.n_steps();
     last_good_time_ = test_.time();

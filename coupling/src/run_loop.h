@@ -142,7 +142,6 @@ namespace coupling
     std::vector<double> rock_kinetic_, rock_internal_;
     double next_row_ = 0, next_snap_ = 0; ///< times of the next history row and snapshot [s]
     ParticleSnapshot last_good_;
-    std::vector<double> last_good_mode_; ///< failure modes as doubles (gathered across ranks)
     std::size_t last_good_step_ = 0;
     // distributed runs: the stop and time-checkpoint wishes of all ranks, agreed by
     // check_stability's one collective of the step (the same on every rank)

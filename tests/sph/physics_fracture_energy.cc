@@ -52,7 +52,7 @@ namespace
   TensionResult pull_apart(const MaterialParameters &m, const double dx, const double a,
                            const double L, const double opening, const bool fade = true)
   {
-    Parameters prm; // the default hourglass control (0.1), faded in softening particles or not
+    Parameters prm; // the default hourglass control (0.1), dropped across the crack or not
     prm.spacing           = dx;
     prm.hourglass_fade    = fade;
     const Lattice<3> lat  = make_block<3>(Vector<3>(0, 0, 0), Vector<3>(a, a, L), dx);

@@ -325,6 +325,12 @@ namespace sph::rock
                                                           FailureMode::shear;
   }
 
+  /// MaterialState::cracked after a return from `old` to `now`: once softened in tension, always.
+  inline bool cracked_after(const MaterialState &old, const MaterialState &now)
+  {
+    return old.cracked || (now.failure_mode == FailureMode::tensile && now.damage > 0);
+  }
+
   /// Crack band softening (SofteningLaw::fracture_energy): the damage after a plastic increment
   /// that dissipated `dissipation` [J/m^3] (sigma : d eps_p) in a return of kind `mode`, from
   /// damage `damage_old`.
@@ -456,8 +462,7 @@ namespace sph::rock
         out.state.damage         = std::max(old_state.damage, d);
         if (old_state.damage < 1.0)
           out.state.failure_mode = mode;
-        out.state.cracked = old_state.cracked ||
-                            (out.state.failure_mode == FailureMode::tensile && out.state.damage > 0);
+        out.state.cracked = cracked_after(old_state, out.state);
         return out;
       }
     // the equivalent plastic strain of the return at the damage of a plastic strain increment
@@ -526,8 +531,7 @@ namespace sph::rock
     out.state.damage = std::max(old_state.damage, damage_of(out.state.plastic_strain, prm));
     if (old_state.damage < 1.0)
       out.state.failure_mode = classify(s, old_state.strength, out.state.damage);
-    out.state.cracked = old_state.cracked ||
-                        (out.state.failure_mode == FailureMode::tensile && out.state.damage > 0);
+    out.state.cracked = cracked_after(old_state, out.state);
     return out;
   }
 
