@@ -49,7 +49,9 @@ namespace app
            "  report.md       candidates table, named cause and evidence, fitted values, gain\n"
            "  envelope.csv, points.csv, envelope.png, curves.png\n"
            "  with --coupled-spacing: coupled_gain and simulations in diagnosis.json,\n"
-           "  simulations.png, simulations/ (s<i>_baseline.prm, s<i>_extended.prm, curves.csv)\n"
+           "  simulations.png, simulations/ (s<i>_baseline.prm, s<i>_extended.prm, curves.csv);\n"
+           "  a specimen whose run goes unstable is reported (stop_reason, unstable) and left\n"
+           "  out of coupled_gain, with a warning on stderr\n"
            "\n"
            "options:\n"
            "  -o, --output OUTDIR  result folder; never replaced without --force\n"
@@ -214,6 +216,11 @@ namespace app
       std::printf("identified: %s; gain %.3g (held-out %.3g; coupled simulator, held-out %.3g); wrote %s\n",
                   ids.c_str(), d.gain, d.heldout_gain, d.coupled_gain,
                   diagnose::clip(published.string()).c_str());
+    if (d.coupled_unstable > 0)
+      std::fprintf(stderr,
+                   "cosim diagnose: warning: %d of %zu simulated specimens left out of the "
+                   "coupled gain, a run unstable (report.md, Notes)\n",
+                   d.coupled_unstable, d.simulations.size());
     return 0;
   }
 } // namespace app

@@ -144,7 +144,10 @@ namespace diagnose
             << fmt(m.length_mm, 4) << " | " << fmt(m.confining_MPa, 4) << " | "
             << fmt(1e3 * m.particle_spacing, 3) << " | " << fmt(m.measured_peak_MPa, 4) << " | "
             << fmt(m.baseline.peak_MPa, 4) << " | " << fmt(m.extended.peak_MPa, 4) << " | "
-            << m.n_points << " | " << fmt(m.baseline.error) << " -> " << fmt(m.extended.error)
+            << m.n_points << " | "
+            << (m.baseline.unstable || m.extended.unstable
+                  ? std::string("a run unstable, left out (notes)")
+                  : fmt(m.baseline.error) + " -> " + fmt(m.extended.error))
             << " |\n";
         }
       }
@@ -208,6 +211,7 @@ namespace diagnose
     j["discrepancy_gain"]    = num(d.discrepancy_gain);
     j["n_discrepancy"]       = d.n_discrepancy;
     j["coupled_gain"]        = num(d.coupled_gain);
+    j["coupled_unstable"]    = d.coupled_unstable;
     j["simulations"]         = Json::array();
     for (std::size_t i = 0; i < d.simulations.size(); ++i)
     {
@@ -227,7 +231,8 @@ namespace diagnose
                 {"peak_MPa", num(run->peak_MPa)},
                 {"error", num(run->error)},
                 {"curve_rms_mm", m.n_points > 0 ? num(run->curve_rms_mm) : Json(nullptr)},
-                {"stop_reason", run->stop_reason}};
+                {"stop_reason", run->stop_reason},
+                {"unstable", run->unstable}};
       j["simulations"].push_back(o);
     }
     j["noise"]               = Json::object();

@@ -3,6 +3,7 @@
 // against the measured ones (see diagnose_model.h, simulate()).
 #include "diagnose_model.h"
 
+#include <coupling/errors.h>
 #include <coupling/run_case.h>
 #include <coupling/run_output.h>
 #include <sph/rock_models.h>
@@ -103,6 +104,12 @@ namespace diagnose
       return o;
     }
 
+    /// A run of a heterogeneous rock's fit went unstable: where (`what`), and its case file.
+    struct FitUnstable
+    {
+      std::string what, case_text;
+    };
+
     /// Keeps the history rows of a run.
     class Recorder : public coupling::RunObserver
     {
@@ -166,9 +173,21 @@ namespace diagnose
       options.read_case(overrides, c, out.case_text); // Output/Snapshots=0 among them
       c.output.progress = false;
       Recorder rec;
-      const coupling::Summary s = coupling::run_case(c, rec);
-      out.peak_MPa              = s.peak_stress / 1e6;
-      out.stop_reason           = s.stop_reason;
+      try
+      {
+        const coupling::Summary s = coupling::run_case(c, rec);
+        out.peak_MPa              = s.peak_stress / 1e6;
+        out.stop_reason           = s.stop_reason;
+      }
+      catch (const coupling::InstabilityError &e)
+      {
+        // one unstable run does not end the diagnosis: the specimen is reported and left out of
+        // the gain (its peak so far is not a peak: the run may not have reached it)
+        out.unstable    = true;
+        out.stop_reason = std::string("unstable: ") + e.what();
+        for (const auto &row : rec.rows)
+          out.peak_MPa = std::max(out.peak_MPa, row.stress / 1e6);
+      }
       // the curve from the start of the deviatoric load (CTCS: after the confinement), in the
       // data's units: deviatoric force (BTS: the load) and the displacement where it was read
       const bool bts    = t.test == "BTS";
@@ -209,7 +228,8 @@ namespace diagnose
 
     /// The mean of the realisations of a heterogeneous rock: the mean peak, and the mean curve at
     /// the first one's times up to the shortest run's end (they load on one schedule); its case
-    /// file and stop reason are the first one's, or the stop reason of a run that failed.
+    /// file and stop reason are the first one's, or the stop reason of a run that failed (of one
+    /// that went unstable: its case file too).
     SimulatedRun mean_of(const std::vector<SimulatedRun> &runs,
                          const std::vector<std::vector<double>> &times)
     {
@@ -224,6 +244,12 @@ namespace diagnose
         end = std::min(end, times[k].empty() ? 0 : times[k].back());
         if (runs[k].stop_reason != "post-peak drop" && runs[k].stop_reason != "end strain")
           out.stop_reason = runs[k].stop_reason;
+        if (runs[k].unstable && !out.unstable) // the first rock that went unstable
+        {
+          out.unstable    = true;
+          out.stop_reason = "rock " + std::to_string(k + 1) + " " + runs[k].stop_reason;
+          out.case_text   = runs[k].case_text; // the case that went unstable, to re-run
+        }
       }
       for (const double at : times.front())
       {
@@ -322,6 +348,7 @@ namespace diagnose
     const double het_spacing = std::max(options.coupled_spacing, 5e-3);
     // a heterogeneous rock's fit: rock -> (characteristic length, strength scale)
     std::map<std::string, std::pair<double, double>> fits;
+    std::map<std::string, FitUnstable> stopped; // the fits that a run's instability stopped
     double last_l = 0; // the last fitted characteristic length [m] (the next fit starts there)
     const auto run = [&](const SimulatorTarget &t, SimulatedRock r, const double dx) {
       SimulatedRun result;
@@ -359,92 +386,122 @@ namespace diagnose
                " " + num(r.short_length);
         if (!fits.count(key))
         {
-          const double target = fit_l ? r.short_peak / r.calibration_peak : 1.0;
-          std::map<double, std::pair<double, double>> peaks; // log l -> standard, short
-          const auto ratio_at = [&](const double log_l) {
-            SimulatedRock x         = unit;
-            x.characteristic_length = std::exp(log_l);
-            const double a = mean_run(standard, x, dx_standard).peak_MPa;
-            const double b = fit_l ? mean_run(shortest, x, dx_short).peak_MPa : a;
-            if (!(a > 0 && b > 0))
-              throw std::runtime_error("diagnose: the heterogeneous rock's specimens carried no "
-                                       "load; its brittleness and strengths cannot be fitted");
-            peaks[log_l] = {a, b};
-            return b / a - target;
-          };
-          // l from just above the snap-back limit of the coarser crack band (l > h / 2) to 1 m:
-          // from the last fit's l (first: the case's rock's), steps of x4 until the ratio is
-          // bracketed, then regula falsi (Illinois) on log l to 0.3 % of the ratio (a seventh of
-          // the data's strength noise)
-          coupling::CaseParameters own; // the case's own rock and numerics
-          std::string unused;
-          options.read_case({}, own, unused);
-          const double band = sph::rock::crack_band_width(std::max(dx_standard, dx_short), own.sph.cslh);
-          const double x_min = std::log(0.55 * band), x_max = std::log(1.0);
-          // a fit starts from the last fit's l; without one (no short specimen) l is the case's
-          double x = std::clamp(std::log(fit_l && last_l > 0 ? last_l : characteristic_length(own)),
-                                x_min, x_max);
-          if (fit_l)
+          try
           {
-            double f = ratio_at(x);
-            double lo = x, hi = x, f_lo = f, f_hi = f;
-            // widen: a more ductile rock (larger l) is confined more by the held ends
-            while (std::abs(f) >= 3e-3 * target && f_lo > 0 && lo > x_min)
+            const double target = fit_l ? r.short_peak / r.calibration_peak : 1.0;
+            std::map<double, std::pair<double, double>> peaks; // log l -> standard, short
+            const auto ratio_at = [&](const double log_l) {
+              SimulatedRock x         = unit;
+              x.characteristic_length = std::exp(log_l);
+              const SimulatedRun sa = mean_run(standard, x, dx_standard);
+              const SimulatedRun sb = fit_l ? mean_run(shortest, x, dx_short) : sa;
+              for (const SimulatedRun *u : {&sa, &sb})
+                if (u->unstable)
+                  throw FitUnstable{"at E G_I / f_t^2 = " + num(x.characteristic_length) + " m the " +
+                                      num(u == &sa ? standard.diameter : shortest.diameter) + " x " +
+                                      num(u == &sa ? standard.length : shortest.length) +
+                                      " mm specimen's " + u->stop_reason,
+                                    u->case_text};
+              const double a = sa.peak_MPa, b = sb.peak_MPa;
+              if (!(a > 0 && b > 0))
+                throw std::runtime_error("diagnose: the heterogeneous rock's specimens carried no "
+                                         "load; its brittleness and strengths cannot be fitted");
+              peaks[log_l] = {a, b};
+              return b / a - target;
+            };
+            // l from just above the snap-back limit of the coarser crack band (l > h / 2) to 1 m:
+            // from the last fit's l (first: the case's rock's), steps of x4 until the ratio is
+            // bracketed, then regula falsi (Illinois) on log l to 0.3 % of the ratio (a seventh of
+            // the data's strength noise)
+            coupling::CaseParameters own; // the case's own rock and numerics
+            std::string unused;
+            options.read_case({}, own, unused);
+            const double band = sph::rock::crack_band_width(std::max(dx_standard, dx_short), own.sph.cslh);
+            const double x_min = std::log(0.55 * band), x_max = std::log(1.0);
+            // a fit starts from the last fit's l; without one (no short specimen) l is the case's
+            double x = std::clamp(std::log(fit_l && last_l > 0 ? last_l : characteristic_length(own)),
+                                  x_min, x_max);
+            if (fit_l)
             {
-              hi = lo, f_hi = f_lo;
-              lo = std::max(x_min, lo - std::log(4.0)), f_lo = ratio_at(lo);
-            }
-            while (std::abs(f) >= 3e-3 * target && f_hi < 0 && hi < x_max)
-            {
-              lo = hi, f_lo = f_hi;
-              hi = std::min(x_max, hi + std::log(4.0)), f_hi = ratio_at(hi);
-            }
-            bool found = std::abs(f) < 3e-3 * target;
-            if (!found && f_lo >= 0)
-              x = lo, found = true; // even the most brittle rock is confined too much
-            if (!found && f_hi <= 0)
-              x = hi, found = true; // even the most ductile rock is confined too little
-            int side = 0;
-            for (int it = 0; !found && it < 12; ++it)
-            {
-              x     = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-              f     = ratio_at(x);
-              found = std::abs(f) < 3e-3 * target || hi - lo < 1e-3;
-              if (f < 0)
+              double f = ratio_at(x);
+              double lo = x, hi = x, f_lo = f, f_hi = f;
+              // widen: a more ductile rock (larger l) is confined more by the held ends
+              while (std::abs(f) >= 3e-3 * target && f_lo > 0 && lo > x_min)
               {
-                lo = x, f_lo = f;
-                if (side == -1)
-                  f_hi /= 2;
-                side = -1;
+                hi = lo, f_hi = f_lo;
+                lo = std::max(x_min, lo - std::log(4.0)), f_lo = ratio_at(lo);
               }
-              else
+              while (std::abs(f) >= 3e-3 * target && f_hi < 0 && hi < x_max)
               {
-                hi = x, f_hi = f;
-                if (side == 1)
-                  f_lo /= 2;
-                side = 1;
+                lo = hi, f_lo = f_hi;
+                hi = std::min(x_max, hi + std::log(4.0)), f_hi = ratio_at(hi);
               }
+              bool found = std::abs(f) < 3e-3 * target;
+              if (!found && f_lo >= 0)
+                x = lo, found = true; // even the most brittle rock is confined too much
+              if (!found && f_hi <= 0)
+                x = hi, found = true; // even the most ductile rock is confined too little
+              int side = 0;
+              for (int it = 0; !found && it < 12; ++it)
+              {
+                x     = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+                f     = ratio_at(x);
+                found = std::abs(f) < 3e-3 * target || hi - lo < 1e-3;
+                if (f < 0)
+                {
+                  lo = x, f_lo = f;
+                  if (side == -1)
+                    f_hi /= 2;
+                  side = -1;
+                }
+                else
+                {
+                  hi = x, f_hi = f;
+                  if (side == 1)
+                    f_lo /= 2;
+                  side = 1;
+                }
+              }
+              last_l = std::exp(x);
             }
-            last_l = std::exp(x);
+            if (!peaks.count(x))
+              ratio_at(x);
+            const auto [a, b] = peaks.at(x);
+            fits[key]         = {std::exp(x), r.calibration_peak / a};
+            out.notes.push_back(
+              "coupled simulator: end friction mu " + num(r.friction) +
+              " on a heterogeneous rock (mean of " + std::to_string(realisations) +
+              " rocks) of characteristic length E G_I / f_t^2 = " + num(std::exp(x)) + " m" +
+              (fit_l ? ", fitted: its " + num(r.short_diameter) + " x " + num(r.short_length) +
+                         " mm specimen carries " + num(b / a) +
+                         " x its standard one's strength (the model: " + num(target) + ")"
+                     : " (the case's rock's)") +
+              "; strengths x " + num(r.calibration_peak / a) + " for the standard " +
+              num(r.calibration_peak) + " MPa");
           }
-          if (!peaks.count(x))
-            ratio_at(x);
-          const auto [a, b] = peaks.at(x);
-          fits[key]         = {std::exp(x), r.calibration_peak / a};
-          out.notes.push_back(
-            "coupled simulator: end friction mu " + num(r.friction) +
-            " on a heterogeneous rock (mean of " + std::to_string(realisations) +
-            " rocks) of characteristic length E G_I / f_t^2 = " + num(std::exp(x)) + " m" +
-            (fit_l ? ", fitted: its " + num(r.short_diameter) + " x " + num(r.short_length) +
-                       " mm specimen carries " + num(b / a) +
-                       " x its standard one's strength (the model: " + num(target) + ")"
-                   : " (the case's rock's)") +
-            "; strengths x " + num(r.calibration_peak / a) + " for the standard " +
-            num(r.calibration_peak) + " MPa");
+          catch (const FitUnstable &e)
+          {
+            fits[key] = {std::nan(""), std::nan("")};
+            stopped[key] = e;
+            out.notes.push_back("coupled simulator: the fit of the heterogeneous rock for end "
+                                "friction mu " + num(r.friction) + " stopped, " + e.what +
+                                "; its specimens' extended cases are not run (each one's case "
+                                "file is the unstable run's)");
+          }
         }
-        r.characteristic_length = fits[key].first;
-        r.calibration_factor    = fits[key].second;
-        result                  = mean_run(t, r, spacing_of(t, het_spacing));
+        if (stopped.count(key))
+        {
+          result.unstable    = true;
+          result.stop_reason = "not run: the fit of its rock stopped, " + stopped[key].what;
+          result.case_text   = "# the fit of this specimen's rock stopped at this case, " +
+                             stopped[key].what + "\n" + stopped[key].case_text;
+        }
+        else
+        {
+          r.characteristic_length = fits[key].first;
+          r.calibration_factor    = fits[key].second;
+          result                  = mean_run(t, r, spacing_of(t, het_spacing));
+        }
       }
       else
         result = once(t, r, dx, 0).first;
@@ -472,6 +529,12 @@ namespace diagnose
       }
       sim.baseline = run(t, t.baseline, sim.particle_spacing);
       sim.extended = run(t, t.extended, sim.particle_spacing);
+      out.simulations.push_back(sim);
+      if (sim.baseline.unstable || sim.extended.unstable)
+      {
+        ++out.coupled_unstable;
+        continue;
+      }
       ss_b += std::pow(sim.baseline.error, 2);
       ss_e += std::pow(sim.extended.error, 2);
       if (t.has_peak)
@@ -486,9 +549,8 @@ namespace diagnose
         sc_e += std::pow(sim.extended.curve_rms_mm, 2);
         ++n_curve;
       }
-      out.simulations.push_back(sim);
     }
-    const double n = std::max<double>(targets.size(), 1);
+    const double n = std::max<double>(targets.size() - out.coupled_unstable, 1);
     for (auto [e, ss, sp, sc] : {std::tuple{&out.baseline, ss_b, sp_b, sc_b},
                                  std::tuple{&out.extended, ss_e, sp_e, sc_e}})
     {
@@ -499,6 +561,12 @@ namespace diagnose
         e->coupled["curve_rms_mm"] = std::sqrt(sc / n_curve);
     }
     out.coupled_gain = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
+    if (out.coupled_unstable == static_cast<int>(targets.size()))
+    {
+      out.coupled_gain = std::nan("");
+      for (auto *e : {&out.baseline, &out.extended})
+        e->coupled.clear();
+    }
     out.notes.push_back(
       "coupled simulator: " + std::to_string(targets.size()) + " specimens, " +
       std::to_string(done.size()) + " runs (run_case at spacing " + num(options.coupled_spacing) +
@@ -507,13 +575,30 @@ namespace diagnose
       "simulator loads at its own quasi-static rate); end friction on a heterogeneous rock, the "
       "mean of " + std::to_string(realisations) + " rocks, at spacing " + num(het_spacing) +
       " m or coarser");
+    // a run that went unstable: its specimen is named, with where, and left out of the gain
+    std::string unstable;
+    for (std::size_t i = 0; i < out.simulations.size(); ++i)
+    {
+      const Simulation &m = out.simulations[i];
+      for (const auto &[which, r] : {std::pair{"baseline", &m.baseline}, std::pair{"extended", &m.extended}})
+        if (r->unstable)
+          unstable += (unstable.empty() ? "" : "; ") + simulation_stem(i) + " (" + m.name + ", " +
+                      m.test + ") " + which + ": " + r->stop_reason;
+    }
+    if (!unstable.empty())
+      out.notes.push_back("coupled simulator: " + std::to_string(out.coupled_unstable) + " of " +
+                          std::to_string(targets.size()) +
+                          " specimens left out of the coupled gain, a run unstable: " + unstable +
+                          (out.coupled_unstable == static_cast<int>(targets.size())
+                             ? "; no coupled gain"
+                             : ""));
     // where the extended case does worse than the baseline, the simulator does not carry what
     // the surrogate named: say where, so that the gain is not read as the surrogate's
     std::string worse;
     for (std::size_t i = 0; i < out.simulations.size(); ++i)
     {
       const Simulation &m = out.simulations[i];
-      if (m.extended.error > 1.05 * m.baseline.error + 0.5)
+      if (!m.baseline.unstable && !m.extended.unstable && m.extended.error > 1.05 * m.baseline.error + 0.5)
         worse += (worse.empty() ? "" : ", ") + simulation_stem(i) + " (" + m.name + ", " +
                  m.test + ": error " + num(m.baseline.error) + " -> " + num(m.extended.error) + ")";
     }

@@ -29,11 +29,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -212,6 +214,74 @@ TEST(DiscoveryCoupled, SaysWhereTheSimulatorDoesWorseThanTheBaseline)
   }
   EXPECT_GE(worse_ones, 1) << notes; // the softened rock does worse somewhere
   EXPECT_NE(notes.find("worse than the baseline"), std::string::npos) << notes;
+}
+
+// A coupled run that goes unstable does not end the diagnosis: its specimen is reported with
+// where it went unstable and left out of the gain, which the other specimens give. The extended
+// case (with a tensile strength) of the first specimen of a tension cut-off diagnosis runs at
+// TSSFAC 5, five times the stable step (caught within a step: reliability_test); every other
+// case runs as it is.
+TEST(DiscoveryCoupled, AnUnstableRunIsReportedAndLeftOutOfTheGain)
+{
+  auto first = std::make_shared<std::string>(); // the first extended case's specimen
+  const Diagnosis d = run("tension_cutoff", 1, 0.005,
+                          [first](const std::vector<std::string> &overrides, coupling::CaseParameters &c) {
+                            std::string specimen;
+                            bool extended = false;
+                            for (const auto &line : overrides)
+                            {
+                              if (line.rfind("Test/", 0) == 0)
+                                specimen += line + "\n";
+                              extended = extended || line.rfind("Rock/Tensile strength=", 0) == 0;
+                            }
+                            if (extended && first->empty())
+                              *first = specimen;
+                            if (extended && specimen == *first)
+                              c.sph.tssfac = 5;
+                          });
+  ASSERT_EQ(d.simulations.size(), 2u) << "two specimens: one unstable, one to give the gain";
+  std::string notes;
+  for (const auto &n : d.notes)
+    notes += n + "\n";
+  const Simulation &bad = d.simulations[0], &good = d.simulations[1];
+  EXPECT_FALSE(bad.baseline.unstable) << bad.baseline.stop_reason;
+  ASSERT_TRUE(bad.extended.unstable) << bad.extended.stop_reason;
+  EXPECT_EQ(bad.extended.stop_reason.rfind("unstable: step ", 0), 0u) << bad.extended.stop_reason;
+  EXPECT_NE(notes.find(simulation_stem(0) + " (" + bad.name + ", " + bad.test + ") extended: unstable"),
+            std::string::npos)
+    << notes;
+  EXPECT_FALSE(good.baseline.unstable || good.extended.unstable) << good.extended.stop_reason;
+  EXPECT_EQ(d.coupled_unstable, 1);
+  // the gain is the completed specimen's alone (the RMS over one specimen is its error)
+  EXPECT_NEAR(d.coupled_gain, good.baseline.error / good.extended.error, 1e-12 * d.coupled_gain);
+  EXPECT_NE(diagnosis_json(d).find("\"coupled_unstable\": 1"), std::string::npos);
+}
+
+// A run of a heterogeneous rock's fit (end friction) that goes unstable stops that fit, not the
+// diagnosis: the specimens it serves are reported, each with the unstable run's case file.
+TEST(DiscoveryCoupled, AnUnstableFitIsReportedWithTheCaseThatWentUnstable)
+{
+  const Diagnosis d = run("end_friction", 1, 0.005,
+                          [](const std::vector<std::string> &overrides, coupling::CaseParameters &c) {
+                            for (const auto &line : overrides)
+                              if (line.rfind("Rock/Strength scatter=", 0) == 0)
+                                c.sph.tssfac = 5;
+                          });
+  ASSERT_FALSE(d.simulations.empty());
+  EXPECT_EQ(d.coupled_unstable, static_cast<int>(d.simulations.size()));
+  EXPECT_TRUE(std::isnan(d.coupled_gain)) << d.coupled_gain;
+  for (const auto &m : d.simulations)
+  {
+    EXPECT_FALSE(m.baseline.unstable) << m.name << ": " << m.baseline.stop_reason;
+    EXPECT_TRUE(m.extended.unstable) << m.name;
+    EXPECT_EQ(m.extended.stop_reason.rfind("not run: the fit of its rock stopped, at E G_I", 0), 0u)
+      << m.extended.stop_reason;
+    // the first rock went unstable: its case file is the one given
+    const std::size_t at = m.extended.case_text.find("set Scatter seed ");
+    ASSERT_NE(at, std::string::npos) << m.extended.case_text;
+    const std::string line = m.extended.case_text.substr(at, m.extended.case_text.find('\n', at) - at);
+    EXPECT_NE(line.find("= 1"), std::string::npos) << line;
+  }
 }
 
 TEST(DiscoveryCoupled, TensionCutoff) { expect_gain("tension_cutoff"); }

@@ -141,6 +141,10 @@ namespace diagnose
     double error = 0;
     double curve_rms_mm = 0; ///< RMS displacement error on the pre-peak curve points [mm]
     std::string stop_reason;
+    /// The run went unstable (or, for a heterogeneous rock, a run of its fit did): stop_reason
+    /// says where; the peak and curve are those before it, and the specimen is left out of the
+    /// coupled gain.
+    bool unstable = false;
   };
 
   /// A measured specimen the coupled simulator ran, held out of the fit of the extended model's
@@ -172,8 +176,10 @@ namespace diagnose
     double discrepancy_gain = 1;
     int n_discrepancy       = 0; ///< test conditions (or curve points) in the discrepancy
     /// The coupled simulator's held-out gain: RMS normalised error of the baseline case over
-    /// the extended case's on the simulated specimens (Diagnosis::simulations), when run [-]
+    /// the extended case's on the simulated specimens (Diagnosis::simulations) whose runs did
+    /// not go unstable, when run; NaN when every specimen's did [-]
     double coupled_gain = 1;
+    int coupled_unstable = 0; ///< simulated specimens left out of coupled_gain (a run unstable)
     std::vector<Simulation> simulations;
     std::vector<FittedValue> extended_parameters;
     std::map<std::string, double> noise; ///< per data kind, what it came from in notes
