@@ -126,10 +126,12 @@ namespace coupling
   {
     const double dx   = prm_.sph.spacing;
     const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
+    // body-fitted: the inner volumes consistent with the body's kernel (sph::SummedWith)
+    const sph::SummedWith kernel{prm_.sph.kernel, prm_.sph.cslh * dx};
     const sph::Lattice<3> lattice =
-      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle)
+      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle, kernel)
                      : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
-           : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx)
+           : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx, kernel)
                      : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;

@@ -2,6 +2,7 @@
 
 #include "lattice_detail.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -62,6 +63,72 @@ namespace sph
       }
     };
 
+    /// The areas of the layer's centre and first three rings (r < 3.5 dr) made consistent with
+    /// the kernel (SummedWith): each one's sum_j A_j step W over the layer stacked `step` apart
+    /// without end equal to the mean sum of the next three rings' (those of them 2h inside the
+    /// boundary; `inner`: whether a point of the plane is); the others keep their areas. Ring k holds
+    /// 2 round(pi k) particles: the first rings' are 4.5 % short of 2 pi k, and the centre's
+    /// disc of radius dr / 2 sits among them; from the fourth ring out the sums agree within
+    /// 3e-4 (1.25 mm, cubic spline, h 1.2 dx). Fixed-point iteration A_i <- A_i target / S_i to
+    /// 1e-10 of the target. Nothing to do where no ring lies beyond (D below about 12 dx).
+    template <typename Inner>
+    void make_areas_consistent(std::vector<RingPoint> &layer, const double step, const double dr,
+                               const SummedWith &with, const Inner &inner)
+    {
+      if (!(with.h > 0 && std::isfinite(with.h)))
+        throw std::invalid_argument("sph fitted body: the smoothing length must be > 0, got " +
+                                    std::to_string(with.h));
+      const double h = with.h, reach = 2 * h;
+      std::vector<std::size_t> own, beyond; // the particles corrected; those that set the target
+      for (std::size_t i = 0; i < layer.size(); ++i)
+        if (inner(layer[i].u, layer[i].v))
+        {
+          const double r = std::hypot(layer[i].u, layer[i].v);
+          if (r < 3.5 * dr)
+            own.push_back(i);
+          else if (r < 6.5 * dr)
+            beyond.push_back(i);
+        }
+      if (own.empty() || beyond.empty())
+        return;
+      // the kernel between two particles of the plane, summed over the stack
+      const int layers = static_cast<int>(std::floor(reach / step));
+      const auto stacked = [&](const RingPoint &a, const RingPoint &b) {
+        const double d2 = std::pow(a.u - b.u, 2) + std::pow(a.v - b.v, 2);
+        double w = 0;
+        if (d2 < reach * reach)
+          for (int k = -layers; k <= layers; ++k)
+            w += kernels::w<3>(with.kernel, std::sqrt(d2 + std::pow(k * step, 2)), h);
+        return w * step;
+      };
+      // each particle's neighbours and their kernel sums: the corrected ones, then the others
+      std::vector<std::size_t> all = own;
+      all.insert(all.end(), beyond.begin(), beyond.end());
+      std::vector<std::vector<std::pair<std::size_t, double>>> terms(all.size());
+      for (std::size_t a = 0; a < all.size(); ++a)
+        for (std::size_t j = 0; j < layer.size(); ++j)
+          if (const double w = stacked(layer[all[a]], layer[j]); w > 0)
+            terms[a].push_back({j, w});
+      for (int it = 0; it < 1000; ++it)
+        {
+          std::vector<double> sum(all.size(), 0.0);
+          for (std::size_t a = 0; a < all.size(); ++a)
+            for (const auto &[j, w] : terms[a])
+              sum[a] += layer[j].area * w;
+          // the target moves with the corrected areas (rings 4-6 reach rings 2-3)
+          double target = 0, worst = 0;
+          for (std::size_t a = own.size(); a < all.size(); ++a)
+            target += sum[a] / beyond.size();
+          for (std::size_t a = 0; a < own.size(); ++a)
+            worst = std::max(worst, std::abs(sum[a] / target - 1));
+          if (worst < 1e-10)
+            return;
+          for (std::size_t a = 0; a < own.size(); ++a)
+            layer[own[a]].area *= target / sum[a];
+        }
+      throw std::logic_error("sph fitted body: the kernel-consistent volumes did not converge");
+    }
+
     /// `layer` stacked `n` times, `step` [m] apart: layer k's ring point p at place(k, p), its
     /// volume p's area times `step`.
     template <typename Place>
@@ -77,7 +144,8 @@ namespace sph
     }
   } // namespace
 
-  Lattice<3> make_fitted_cylinder(const double D, const double L, const double dx)
+  Lattice<3> make_fitted_cylinder(const double D, const double L, const double dx,
+                                  const std::optional<SummedWith> &summed_with)
   {
     check(D, "cylinder diameter");
     check(L, "cylinder length");
@@ -86,9 +154,13 @@ namespace sph
     out.spacing    = dx;
     const double R = 0.5 * D;
     double       dr = 0;
-    const std::vector<RingPoint> layer = ring_layer(R, dx, dr);
+    std::vector<RingPoint> layer = ring_layer(R, dx, dr);
     const int    nz = n_cells(L, dx);
     const double dz = L / nz;
+    if (summed_with)
+      make_areas_consistent(layer, dz, dr, *summed_with, [&](const double u, const double v) {
+        return std::hypot(u, v) <= R - 2 * summed_with->h;
+      });
     stack_layers(out, layer, nz, dz, [&](const int k, const RingPoint &p) {
       return Vector<3>(p.u, p.v, (k + 0.5) * dz);
     });
@@ -102,7 +174,7 @@ namespace sph
   }
 
   Lattice<3> make_fitted_disc(const double D, const double t, const double dx,
-                              const double flat_angle)
+                              const double flat_angle, const std::optional<SummedWith> &summed_with)
   {
     check(D, "disc diameter");
     check(t, "disc thickness");
@@ -141,6 +213,11 @@ namespace sph
       }
     const int    ny = n_cells(t, dx);
     const double dy = t / ny;
+    if (summed_with)
+      make_areas_consistent(layer, dy, dr, *summed_with, [&](const double u, const double v) {
+        const double margin = 2 * summed_with->h;
+        return std::hypot(u, v) <= R - margin && std::abs(v) <= R * cos_a - margin;
+      });
     stack_layers(out, layer, ny, dy, [&](const int k, const RingPoint &p) {
       return Vector<3>(p.u, centred(k, ny, dy), R + p.v);
     });

@@ -121,8 +121,8 @@ TEST(CoupledBts, FlattenedDiscSplitsFromItsCentreWhereMohrCoulombSays)
 // body-fitted): the platens press the true flats at every spacing, and the elastic field is
 // Hondros's (CoupledBodyFitted.ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays; the lattice
 // disc above is 12 % low in the centre's tension at 1.25 mm, which is why its onset sits on the
-// plane closed form). The Mohr-Coulomb disc's peak converges: 12.63 / 12.75 / 12.71 MPa at
-// 1.25 / 1 / 0.8 mm (11.91 at 2.5 mm). It is 6 % below the plane closed form (13.76 MPa)
+// plane closed form). The Mohr-Coulomb disc's peak converges: 12.72 / 12.81 / 12.75 MPa at
+// 1.25 / 1 / 0.8 mm (11.80 at 2.5 mm). It is 7 % below the plane closed form (13.76 MPa)
 // because the 25 mm thick disc's faces carry 1.3 times its mid-plane's tension (elastic, 1 mm),
 // and the first damage is at the flats' corners (r/R 1), where a rigid flat punch's pressure
 // is singular.
@@ -139,17 +139,18 @@ TEST(CoupledBts, FlattenedBodyFittedDiscConvergesInSpacing)
       EXPECT_GT(extra(s[k], "crack_alignment"), 3.0);
     }
   // the two finest the suite can afford: 1 %, the bound asked of a converged strength
-  // (measured 0.95 %; 0.58 % with hourglass forces across the softening particles; the
-  // lattice disc's flattened peaks move 2.7 % between them)
+  // (measured 0.70 %; 0.95 % with the annuli's shares as volumes; the lattice disc's
+  // flattened peaks move 2.7 % between them)
   EXPECT_NEAR(s[1].peak_stress / s[0].peak_stress, 1.0, 0.01);
 }
 
 // A Hoek-Brown rock with a tension cut-off on the same flattened body-fitted disc: group M10's
 // envelope (Rock/Strength parameters = envelope: sigma_ci 206.1 MPa, m_b 10.02, a 0.744) with the
 // cut-off that cosim calibrate --cutoff-from found for Table 3's BTS on this disc at 1.25 mm
-// (6.8756 MPa). Its peak converges (measured 7.99 / 8.00 MPa at 1.25 / 1 mm; 7.58 at 2.5 mm, 5.1 %
-// low, as M8 and M9 are; on the round lattice disc the same rock gives 12.9-13.3 MPa, its peak
-// hardly following the cut-off), so the calibrated cut-off is the rock's, not the spacing's.
+// (6.9618 MPa). Its peak converges (measured 7.98 / 8.02 MPa at 1.25 / 1 mm; 7.47 at 2.5 mm, 6.4 %
+// low, as M8 and M9 are 7.2 / 6.7 %; on the round lattice disc the same rock gives 12.9-13.3 MPa,
+// its peak hardly following the cut-off), so the calibrated cut-off is the rock's, not the
+// spacing's.
 TEST(CoupledBts, CutOffRockOnTheFlattenedBodyFittedDiscConverges)
 {
   std::array<Summary, 2> s;
@@ -163,15 +164,18 @@ TEST(CoupledBts, CutOffRockOnTheFlattenedBodyFittedDiscConverges)
       p.rock.hb_sigma_ci      = 206.1e6;
       p.rock.hb_mb            = 10.023906686963763;
       p.rock.hb_a             = 0.7443428743848444;
-      p.rock.tensile_strength = 6.8756e6;
+      p.rock.tensile_strength = 6.9618e6;
       RunObserver quiet;
       s[k] = run_case(p, quiet);
+      std::printf("dx %g: peak %.4f MPa, alignment %.2f, shear %g, tensile %g\n", spacing[k],
+                  s[k].peak_stress / 1e6, extra(s[k], "crack_alignment"),
+                  extra(s[k], "failure_mode_shear"), extra(s[k], "failure_mode_tensile"));
       EXPECT_EQ(s[k].stop_reason, "post-peak drop");
-      EXPECT_GT(extra(s[k], "crack_alignment"), 3.0); // measured 11.8 / 8.7
+      EXPECT_GT(extra(s[k], "crack_alignment"), 3.0); // measured 10.7 / 8.9
       // a tensile split: the cut-off, no shear failure
       EXPECT_EQ(extra(s[k], "failure_mode_shear"), 0.0);
     }
-  // 2 %: the spacing's effect asked of a converged strength (measured 0.1 %); and at 1.25 mm
+  // 2 %: the spacing's effect asked of a converged strength (measured 0.57 %); and at 1.25 mm
   // Table 3's 7.99 MPa, the calibration's target, within its 0.5 % tolerance
   EXPECT_NEAR(s[0].peak_stress / s[1].peak_stress, 1.0, 0.02);
   EXPECT_NEAR(s[1].peak_stress / 7.99e6, 1.0, 0.005);
