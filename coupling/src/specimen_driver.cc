@@ -129,7 +129,8 @@ namespace coupling
     // body-fitted: the inner volumes consistent with the body's kernel (sph::SummedWith)
     const sph::SummedWith kernel{prm_.sph.kernel, prm_.sph.cslh * dx};
     const sph::Lattice<3> lattice =
-      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle, kernel)
+      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle,
+                                             kernel)
                      : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
            : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx, kernel)
                      : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));

@@ -66,8 +66,8 @@ namespace sph
     /// The areas of the layer's centre and first three rings (r < 3.5 dr) made consistent with
     /// the kernel (SummedWith): each one's sum_j A_j step W over the layer stacked `step` apart
     /// without end equal to the mean sum of the next three rings' (those of them 2h inside the
-    /// boundary; `inner`: whether a point of the plane is); the others keep their areas. Ring k holds
-    /// 2 round(pi k) particles: the first rings' are 4.5 % short of 2 pi k, and the centre's
+    /// boundary; `inner`: whether a point of the plane is); the others keep their areas. Ring k
+    /// holds 2 round(pi k) particles: the first rings' are 4.5 % short of 2 pi k, and the centre's
     /// disc of radius dr / 2 sits among them; from the fourth ring out the sums agree within
     /// 3e-4 (1.25 mm, cubic spline, h 1.2 dx). Fixed-point iteration A_i <- A_i target / S_i to
     /// 1e-10 of the target. Nothing to do where no ring lies beyond (D below about 12 dx).

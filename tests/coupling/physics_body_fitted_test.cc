@@ -222,7 +222,7 @@ namespace
     }
     ASSERT_GE(n, 8.0);
     // 6 % of T RMS over rho 0.1-0.63: the FE profile moves 3 % of T between 2 and 3
-    // refinements, the SPH field 2-5 % with its spacing; measured 3.5 % (mid-plane) and 2.9 %
+    // refinements, the SPH field 2-5 % with its spacing; measured 3.3 % (mid-plane) and 2.5 %
     // (face layer, dx / 2 inside the face); Hondros's plane field would be 10-40 % off both
     EXPECT_LT(std::sqrt(ss_mid / n), 0.06);
     EXPECT_LT(std::sqrt(ss_face / n), 0.06);
