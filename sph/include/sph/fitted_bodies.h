@@ -27,11 +27,12 @@ namespace sph
   /// sum_j V_j W(x_i - x_j, h) equal to the mean of the next three rings' (the layers taken as
   /// continuing past the body's faces). The annuli's shares are not: the centre particle (pi/4
   /// dr^2) among ring 1's six of 1.05 dr^2 each (2 round(pi k) particles on ring k, 4.5 % short
-  /// of 2 pi k for k <= 3) sums to 1.06 where the rings from the fourth out sum to 1 within
-  /// 3e-4 (1.25 mm, cubic spline, h 1.2 dx), and a non-uniform field sees a hard spot there: an
-  /// elastic flattened disc's centre 22 % low in tension against the 3-D FE solution (now 6 %),
-  /// a cylinder's axis particle in lateral tension under an uneven end load. The centre's
-  /// volume becomes 0.685 dr^2 of the layer's. Then the volumes are scaled to the true volume.
+  /// of 2 pi k for k <= 3) sums to 1.06, ring 1 to 1.03, where every particle from the fourth
+  /// ring out sums to 0.998-1.0003 (1.25 mm, cubic spline, h 1.2 dx), and a non-uniform field
+  /// sees a hard spot there: an elastic flattened disc's centre 22 % low in tension against the
+  /// 3-D FE solution (now 6 %), a cylinder's axis particle in lateral tension under an uneven
+  /// end load. The centre's volume becomes 0.684 dr^2 times the layer step (cubic spline; 0.70
+  /// Wendland). Then the volumes are scaled to the true volume.
   struct SummedWith
   {
     KernelType kernel = KernelType::cubic_spline;
