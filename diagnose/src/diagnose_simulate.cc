@@ -237,19 +237,22 @@ namespace diagnose
       out.force_kN.clear();
       out.displacement_mm.clear();
       out.peak_MPa = 0;
+      out.unstable = false; // set below, with the rock that went unstable
       double end   = times.front().empty() ? 0 : times.front().back();
       for (std::size_t k = 0; k < runs.size(); ++k)
       {
         out.peak_MPa += runs[k].peak_MPa / runs.size();
         end = std::min(end, times[k].empty() ? 0 : times[k].back());
-        if (runs[k].stop_reason != "post-peak drop" && runs[k].stop_reason != "end strain")
-          out.stop_reason = runs[k].stop_reason;
-        if (runs[k].unstable && !out.unstable) // the first rock that went unstable
+        if (out.unstable) // the first rock that went unstable is the one reported
+          continue;
+        if (runs[k].unstable)
         {
           out.unstable    = true;
           out.stop_reason = "rock " + std::to_string(k + 1) + " " + runs[k].stop_reason;
           out.case_text   = runs[k].case_text; // the case that went unstable, to re-run
         }
+        else if (runs[k].stop_reason != "post-peak drop" && runs[k].stop_reason != "end strain")
+          out.stop_reason = runs[k].stop_reason;
       }
       for (const double at : times.front())
       {

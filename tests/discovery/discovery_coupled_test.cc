@@ -276,6 +276,9 @@ TEST(DiscoveryCoupled, AnUnstableFitIsReportedWithTheCaseThatWentUnstable)
     EXPECT_TRUE(m.extended.unstable) << m.name;
     EXPECT_EQ(m.extended.stop_reason.rfind("not run: the fit of its rock stopped, at E G_I", 0), 0u)
       << m.extended.stop_reason;
+    // every rock goes unstable at TSSFAC 5: the first one is named, with its step
+    EXPECT_NE(m.extended.stop_reason.find("specimen's rock 1 unstable: step "), std::string::npos)
+      << m.extended.stop_reason;
     // the first rock went unstable: its case file is the one given
     const std::size_t at = m.extended.case_text.find("set Scatter seed ");
     ASSERT_NE(at, std::string::npos) << m.extended.case_text;
