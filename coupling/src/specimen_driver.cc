@@ -127,7 +127,7 @@ namespace coupling
     const double dx   = prm_.sph.spacing;
     const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
     // body-fitted: the inner volumes consistent with the body's kernel (sph::SummedWith)
-    const sph::SummedWith kernel{prm_.sph.kernel, prm_.sph.cslh * dx};
+    const sph::SummedWith kernel = sph::summed_with(prm_.sph);
     const sph::Lattice<3> lattice =
       bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle,
                                              kernel)

@@ -108,8 +108,7 @@ namespace
     d.P   = d.run.load_at(d.run.snapshot_time);
     d.T   = 2 * d.P / (3.14159265358979323846 * p.diameter * p.length);
     // the driver's set: its inner volumes consistent with the case's kernel
-    d.set = sph::make_fitted_disc(p.diameter, p.length, dx, p.flat_angle,
-                                  sph::SummedWith{p.sph.kernel, p.sph.cslh * dx});
+    d.set = sph::make_fitted_disc(p.diameter, p.length, dx, p.flat_angle, sph::summed_with(p.sph));
     return d;
   }
 } // namespace

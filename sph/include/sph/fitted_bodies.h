@@ -17,6 +17,7 @@
 
 #include <sph/kernels.h>
 #include <sph/lattice.h>
+#include <sph/parameters.h>
 
 #include <optional>
 
@@ -38,6 +39,9 @@ namespace sph
     KernelType kernel = KernelType::cubic_spline;
     double     h      = 0; ///< smoothing length [m]
   };
+
+  /// The kernel a Body with numerics `p` sums with (its h = CSLH dx, as Body sets it).
+  inline SummedWith summed_with(const Parameters &p) { return {p.kernel, p.cslh * p.spacing}; }
 
   /// Cylinder of diameter D and length L [m], axis z, base at z = 0, centred at x = y = 0 (the
   /// frame of make_cylinder). Layers along z spaced L / round(L / dx).
