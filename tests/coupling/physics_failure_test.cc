@@ -122,7 +122,7 @@ TEST(CoupledBts, FlattenedDiscSplitsFromItsCentreWhereMohrCoulombSays)
 // Hondros's (CoupledBodyFitted.ElasticFlattenedDiscCarriesItsFlatsLoadAsHondrosSays; the lattice
 // disc above is 12 % low in the centre's tension at 1.25 mm, which is why its onset sits on the
 // plane closed form). The Mohr-Coulomb disc's peak converges: 12.72 / 12.81 / 12.75 MPa at
-// 1.25 / 1 / 0.8 mm (11.80 at 2.5 mm). It is 7 % below the plane closed form (13.76 MPa)
+// 1.25 / 1 / 0.8 mm (11.80 at 2.5 mm). It is 8 % below the plane closed form (13.76 MPa)
 // because the 25 mm thick disc's faces carry 1.3 times its mid-plane's tension (elastic, 1 mm),
 // and the first damage is at the flats' corners (r/R 1), where a rigid flat punch's pressure
 // is singular.
