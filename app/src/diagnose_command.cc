@@ -216,11 +216,11 @@ namespace app
       std::printf("identified: %s; gain %.3g (held-out %.3g; coupled simulator, held-out %.3g); wrote %s\n",
                   ids.c_str(), d.gain, d.heldout_gain, d.coupled_gain,
                   diagnose::clip(published.string()).c_str());
-    if (d.coupled_unstable > 0)
+    if (const int unstable = diagnose::coupled_unstable(d); unstable > 0)
       std::fprintf(stderr,
                    "cosim diagnose: warning: %d of %zu simulated specimens left out of the "
                    "coupled gain, a run unstable (report.md, Notes)\n",
-                   d.coupled_unstable, d.simulations.size());
+                   unstable, d.simulations.size());
     return 0;
   }
 } // namespace app

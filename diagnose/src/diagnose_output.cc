@@ -145,9 +145,8 @@ namespace diagnose
             << fmt(1e3 * m.particle_spacing, 3) << " | " << fmt(m.measured_peak_MPa, 4) << " | "
             << fmt(m.baseline.peak_MPa, 4) << " | " << fmt(m.extended.peak_MPa, 4) << " | "
             << m.n_points << " | "
-            << (m.baseline.unstable || m.extended.unstable
-                  ? std::string("a run unstable, left out (notes)")
-                  : fmt(m.baseline.error) + " -> " + fmt(m.extended.error))
+            << (left_out(m) ? std::string("a run unstable, left out (notes)")
+                            : fmt(m.baseline.error) + " -> " + fmt(m.extended.error))
             << " |\n";
         }
       }
@@ -211,7 +210,7 @@ namespace diagnose
     j["discrepancy_gain"]    = num(d.discrepancy_gain);
     j["n_discrepancy"]       = d.n_discrepancy;
     j["coupled_gain"]        = num(d.coupled_gain);
-    j["coupled_unstable"]    = d.coupled_unstable;
+    j["coupled_unstable"]    = coupled_unstable(d);
     j["simulations"]         = Json::array();
     for (std::size_t i = 0; i < d.simulations.size(); ++i)
     {

@@ -533,11 +533,8 @@ namespace diagnose
       sim.baseline = run(t, t.baseline, sim.particle_spacing);
       sim.extended = run(t, t.extended, sim.particle_spacing);
       out.simulations.push_back(sim);
-      if (sim.baseline.unstable || sim.extended.unstable)
-      {
-        ++out.coupled_unstable;
+      if (left_out(sim))
         continue;
-      }
       ss_b += std::pow(sim.baseline.error, 2);
       ss_e += std::pow(sim.extended.error, 2);
       if (t.has_peak)
@@ -553,7 +550,9 @@ namespace diagnose
         ++n_curve;
       }
     }
-    const double n = std::max<double>(targets.size() - out.coupled_unstable, 1);
+    const int n_unstable = coupled_unstable(out);
+    const bool none_left = n_unstable == static_cast<int>(targets.size());
+    const double n       = std::max<double>(targets.size() - n_unstable, 1);
     for (auto [e, ss, sp, sc] : {std::tuple{&out.baseline, ss_b, sp_b, sc_b},
                                  std::tuple{&out.extended, ss_e, sp_e, sc_e}})
     {
@@ -564,7 +563,7 @@ namespace diagnose
         e->coupled["curve_rms_mm"] = std::sqrt(sc / n_curve);
     }
     out.coupled_gain = ss_e > 0 ? std::sqrt(ss_b / ss_e) : 1;
-    if (out.coupled_unstable == static_cast<int>(targets.size()))
+    if (none_left)
     {
       out.coupled_gain = std::nan("");
       for (auto *e : {&out.baseline, &out.extended})
@@ -589,19 +588,17 @@ namespace diagnose
                       m.test + ") " + which + ": " + r->stop_reason;
     }
     if (!unstable.empty())
-      out.notes.push_back("coupled simulator: " + std::to_string(out.coupled_unstable) + " of " +
+      out.notes.push_back("coupled simulator: " + std::to_string(n_unstable) + " of " +
                           std::to_string(targets.size()) +
                           " specimens left out of the coupled gain, a run unstable: " + unstable +
-                          (out.coupled_unstable == static_cast<int>(targets.size())
-                             ? "; no coupled gain"
-                             : ""));
+                          (none_left ? "; no coupled gain" : ""));
     // where the extended case does worse than the baseline, the simulator does not carry what
     // the surrogate named: say where, so that the gain is not read as the surrogate's
     std::string worse;
     for (std::size_t i = 0; i < out.simulations.size(); ++i)
     {
       const Simulation &m = out.simulations[i];
-      if (!m.baseline.unstable && !m.extended.unstable && m.extended.error > 1.05 * m.baseline.error + 0.5)
+      if (!left_out(m) && m.extended.error > 1.05 * m.baseline.error + 0.5)
         worse += (worse.empty() ? "" : ", ") + simulation_stem(i) + " (" + m.name + ", " +
                  m.test + ": error " + num(m.baseline.error) + " -> " + num(m.extended.error) + ")";
     }

@@ -251,7 +251,7 @@ TEST(DiscoveryCoupled, AnUnstableRunIsReportedAndLeftOutOfTheGain)
             std::string::npos)
     << notes;
   EXPECT_FALSE(good.baseline.unstable || good.extended.unstable) << good.extended.stop_reason;
-  EXPECT_EQ(d.coupled_unstable, 1);
+  EXPECT_EQ(coupled_unstable(d), 1);
   // the gain is the completed specimen's alone (the RMS over one specimen is its error)
   EXPECT_NEAR(d.coupled_gain, good.baseline.error / good.extended.error, 1e-12 * d.coupled_gain);
   EXPECT_NE(diagnosis_json(d).find("\"coupled_unstable\": 1"), std::string::npos);
@@ -268,7 +268,7 @@ TEST(DiscoveryCoupled, AnUnstableFitIsReportedWithTheCaseThatWentUnstable)
                                 c.sph.tssfac = 5;
                           });
   ASSERT_FALSE(d.simulations.empty());
-  EXPECT_EQ(d.coupled_unstable, static_cast<int>(d.simulations.size()));
+  EXPECT_EQ(coupled_unstable(d), static_cast<int>(d.simulations.size()));
   EXPECT_TRUE(std::isnan(d.coupled_gain)) << d.coupled_gain;
   for (const auto &m : d.simulations)
   {

@@ -179,7 +179,6 @@ namespace diagnose
     /// the extended case's on the simulated specimens (Diagnosis::simulations) whose runs did
     /// not go unstable, when run; NaN when every specimen's did [-]
     double coupled_gain = 1;
-    int coupled_unstable = 0; ///< simulated specimens left out of coupled_gain (a run unstable)
     std::vector<Simulation> simulations;
     std::vector<FittedValue> extended_parameters;
     std::map<std::string, double> noise; ///< per data kind, what it came from in notes
@@ -189,6 +188,18 @@ namespace diagnose
     std::string
       points_table; ///< CSV: kind,source,group,test,sigma3_MPa,force_kN,measured,baseline,extended
   };
+
+  /// Whether a simulated specimen is left out of Diagnosis::coupled_gain: a run of it unstable.
+  inline bool left_out(const Simulation &m) { return m.baseline.unstable || m.extended.unstable; }
+
+  /// The simulated specimens left out of Diagnosis::coupled_gain.
+  inline int coupled_unstable(const Diagnosis &d)
+  {
+    int n = 0;
+    for (const Simulation &m : d.simulations)
+      n += left_out(m);
+    return n;
+  }
 
   /// Runs the study.
   Diagnosis diagnose(const Data &data, const Options &options);
