@@ -199,6 +199,7 @@ namespace coupling
       all.stress       = domain->gather(last_good_.stress.data(), 6);
       all.plastic_strain = domain->gather(last_good_.plastic_strain.data(), 1);
       all.damage         = domain->gather(last_good_.damage.data(), 1);
+      // the domain gathers doubles: the modes (small ints) go through them exactly
       const std::vector<double> modes(last_good_.failure_mode.begin(), last_good_.failure_mode.end());
       for (const double mode : domain->gather(modes.data(), 1))
         all.failure_mode.push_back(static_cast<int>(mode));
