@@ -632,16 +632,17 @@ namespace app
           " m: elastic platens about as wide as a lattice specimen take its staircase side on their rim, "
           "which loads the steel unevenly (M1 on rollers, 2.5 mm, default softening: 272.7 MPa against 283.0 "
           "on the body-fitted specimen, the closed form 282.19); set SPH/Particle arrangement = body-fitted");
-      // the flattened body-fitted disc converges from D/40 (cases/bts/README.md; M1, 20 deg flats,
-      // Table 4's c, phi: 11.80 MPa at D/20, 12.72 / 12.81 / 12.75 at D/40, D/50, D/62.5)
+      // the flattened body-fitted disc converges from D/20 (cases/bts/README.md; M1, 20 deg flats,
+      // Table 4's c, phi, 25 mm thick: 12.60 / 12.54 / 12.72 / 12.77 / 12.67 MPa at D/20, D/25,
+      // D/40, D/50, D/62.5; 50 mm thick: 11.90 / 11.66 / 11.70 / 11.45 at D/10, D/15, D/20, D/40)
       if (p.test == "BTS" && p.flat_angle > 0 &&
           p.particle_arrangement == sph::ParticleArrangement::body_fitted &&
-          p.sph.spacing > p.diameter / 40 * (1 + 1e-9))
+          p.sph.spacing > p.diameter / 20 * (1 + 1e-9))
         result.warnings.push_back(
-          "SPH/Particle spacing = " + keys::format(p.sph.spacing) + " m is coarser than D/40 = " +
-          keys::format(p.diameter / 40) +
-          " m: the flattened disc's peak has not converged there (M1, 20 deg flats: 11.80 MPa at D/20, "
-          "12.72 / 12.81 / 12.75 MPa at D/40 / D/50 / D/62.5); quote a peak from D/40 or finer");
+          "SPH/Particle spacing = " + keys::format(p.sph.spacing) + " m is coarser than D/20 = " +
+          keys::format(p.diameter / 20) +
+          " m: the flattened disc's peak has not converged there (M1, 20 deg flats, 50 mm thick: 11.90 "
+          "MPa at D/10, 11.70 / 11.45 MPa at D/20 / D/40); quote a peak from D/20 or finer");
       const double platen_diameter = coupling::cylinder_platen_diameter(p);
       if ((p.test == "UCS" || p.test == "CTCS") && p.platens.steel.model == fem::SteelModel::elastic &&
           !p.platens.bonded && platen_diameter > p.diameter * (1 + 1e-9))

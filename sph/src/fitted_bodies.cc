@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -40,6 +41,62 @@ namespace sph
             }
         }
       return layer;
+    }
+
+    /// The outer ring (the layer's last `n` points, at radius r) re-spaced so that each flat's arc
+    /// |theta| <= a (and |theta - pi| <= a) holds a whole number m of equal sectors: the odd m
+    /// (a particle stays on the loaded diameter) whose sectors are nearest in angle to those of
+    /// the round arcs between the flats, which share the rest equally. With the ring's even
+    /// spacing the corner at a falls inside a sector, whose particle stays on the round arc just
+    /// below the flat: at D/20 (2.5 mm) the flat's particles then cover 82 % of it, the platen
+    /// loads a narrower arc than the specimen's, and the disc's tension reaches 15-25 % too far
+    /// towards the flats (at D/40 the ring's spacing happens to divide the flat: 97 %).
+    void align_outer_ring_with_flats(std::vector<RingPoint> &layer, const std::size_t n,
+                                     const double r, const double a)
+    {
+      int          best  = 1;
+      double       worst = std::numeric_limits<double>::max();
+      for (int m = 1; 2 * m < static_cast<int>(n); m += 2)
+        {
+          const double flat = 2 * a / m, round = 2 * (pi - 2 * a) / (n - 2 * m);
+          const double mismatch = std::abs(std::log(flat / round));
+          if (mismatch < worst)
+            {
+              worst = mismatch;
+              best  = m;
+            }
+        }
+      const int    m     = best;
+      const int    q     = (static_cast<int>(n) - 2 * m) / 2; // sectors on each round arc
+      const double flat  = 2 * a / m, round = (pi - 2 * a) / q;
+      const double area  = layer.back().area * n; // the ring's annulus
+      std::vector<double> angles, widths;
+      for (int j = 0; j < m; ++j) // the top flat, centred on theta = 0
+        {
+          angles.push_back(-a + (j + 0.5) * flat);
+          widths.push_back(flat);
+        }
+      for (int j = 0; j < q; ++j) // the round arc towards theta = pi
+        {
+          angles.push_back(a + (j + 0.5) * round);
+          widths.push_back(round);
+        }
+      for (int j = 0; j < m; ++j) // the bottom flat, centred on theta = pi
+        {
+          angles.push_back(pi - a + (j + 0.5) * flat);
+          widths.push_back(flat);
+        }
+      for (int j = 0; j < q; ++j) // back to the top flat
+        {
+          angles.push_back(pi + a + (j + 0.5) * round);
+          widths.push_back(round);
+        }
+      for (std::size_t j = 0; j < n; ++j)
+        {
+          RingPoint &p = layer[layer.size() - n + j];
+          p            = {r * std::sin(angles[j]), r * std::cos(angles[j]),
+                          area * widths[j] / (2.0 * pi), 0.5 * widths[j]};
+        }
     }
 
     /// The Jacobian (rho / R)^2 of the flattening map, rho(theta) = min(R, R cos a / |cos theta|),
@@ -189,6 +246,13 @@ namespace sph
     const double R = 0.5 * D;
     double       dr = 0;
     std::vector<RingPoint> layer = ring_layer(R, dx, dr);
+    if (flat_angle > 0)
+      {
+        const int n_rings = static_cast<int>(std::lround(R / dr - 0.5));
+        const int n_outer = 2 * std::max(1, static_cast<int>(std::lround(pi * n_rings)));
+        align_outer_ring_with_flats(layer, static_cast<std::size_t>(n_outer), n_rings * dr,
+                                    0.5 * flat_angle);
+      }
     // flats at v = -+ R cos(alpha): the round layer pulled in along its radii onto the
     // flattened boundary rho(theta) = min(R, R cos(alpha) / |cos theta|), theta from the load
     // axis v. The map (r, theta) -> (r rho / R, theta) keeps every ring's particle on the
