@@ -710,6 +710,8 @@ namespace app
            << (rc.strength_source == "measured" ? "measured c, phi: Table 3"
                : rc.strength_source == "brazilian"
                  ? "c, phi calibrated to UCS and BTS at the disc centre's stress state"
+               : rc.strength_source == "simulated"
+                 ? "c, phi with which the simulator reproduces its UCS and BTS: simulator_calibrated.csv"
                : rc.strength_source == "envelope" ? "Hoek-Brown envelope fitted to all its strengths"
                                                   : "calibrated c, phi: Table 4")
            << ") and explicit keys\n";

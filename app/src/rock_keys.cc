@@ -30,10 +30,10 @@ namespace app::keys
                {sph::RockModel::elastic, sph::RockModel::mohr_coulomb, sph::RockModel::mohr_coulomb_cutoff,
                 sph::RockModel::hoek_brown},
                "constitutive model of the rock");
-    s.add_choice("Strength parameters", c.strength_source, "calibrated|measured|brazilian|envelope",
-                 "c, phi from Table 4 (calibrated to UCS and BTS), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
+    s.add_choice("Strength parameters", c.strength_source, "calibrated|simulated|measured|brazilian|envelope",
+                 "c, phi from Table 4 (calibrated to UCS and BTS by the closed forms), simulated (those with which the simulator reproduces the group's UCS and BTS: simulator_calibrated.csv, cosim calibrate --simulate --with-bts on the flattened body-fitted disc), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
     s.add("Data directory", c.data_directory,
-          "folder with table3_fitted_parameters.csv, table4_calibrated.csv; empty = cases/data");
+          "folder with table3_fitted_parameters.csv, table4_calibrated.csv, simulator_calibrated.csv; empty = cases/data");
     s.add<double>("Density", m.density, "[kg/m^3] (not in the paper: a typical basalt value)",
                   [](double v) { return v > 0 && v < 30000; }, "must be in (0, 30000) kg/m^3");
     s.add_optional("Youngs modulus", o.youngs_modulus, "[Pa]; empty = from Rock/Group");
@@ -231,6 +231,15 @@ namespace app::keys
       o.hb_a  = h.a;
       if (!o.tensile_strength)
         o.tensile_strength = h.tensile;
+    }
+    else if (c.strength_source == "simulated")
+    {
+      if (!group.simulated_cohesion)
+        fail("Rock/Strength parameters",
+             "simulated: group " + c.group + " has no row in simulator_calibrated.csv of the data folder; "
+             "cosim calibrate --simulate ... --with-bts finds its c, phi, or use calibrated");
+      group_c   = group.simulated_cohesion;
+      group_phi = group.simulated_friction_angle;
     }
     else if (c.strength_source == "measured")
     {

@@ -65,29 +65,36 @@ namespace diagnose
     if (table.groups_.empty())
       throw InputError(t3.file() + ": no data rows; expected one row per material group");
 
-    const std::string t4_path = directory + "/table4_calibrated.csv";
-    if (fs::exists(t4_path))
-    {
-      const CsvTable t4 = CsvTable::read(t4_path);
-      t4.require_columns({"group", "c_MPa", "phi_deg"});
-      for (std::size_t r = 0; r < t4.n_rows(); ++r)
-      {
-        const std::string name = t4.text(r, "group");
-        MaterialGroup *g = nullptr;
-        for (auto &candidate : table.groups_)
-          if (candidate.group == name)
-            g = &candidate;
-        check(g != nullptr, t4, r, "group '" + clip(name) + "' is not in table3_fitted_parameters.csv (" +
-                                     table.group_names() + ")");
-        check(!g->calibrated_cohesion, t4, r, "group " + name + " appears twice");
-        const double c = t4.number(r, "c_MPa"), phi = t4.number(r, "phi_deg");
-        check(c > 0 && c <= 1e4, t4, r, "c_MPa = " + clip(t4.text(r, "c_MPa")) + " must be in (0, 10000]");
-        check(phi > 0 && phi < 90, t4, r, "phi_deg = " + clip(t4.text(r, "phi_deg")) + " must be in (0, 90)");
-        g->calibrated_cohesion = c * 1e6;
-        g->calibrated_friction_angle = phi;
-      }
-    }
+    table.read_c_phi(directory + "/table4_calibrated.csv", &MaterialGroup::calibrated_cohesion,
+                     &MaterialGroup::calibrated_friction_angle);
+    table.read_c_phi(directory + "/simulator_calibrated.csv", &MaterialGroup::simulated_cohesion,
+                     &MaterialGroup::simulated_friction_angle);
     return table;
+  }
+
+  void MaterialTable::read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
+                                 std::optional<double> MaterialGroup::*friction_angle)
+  {
+    if (!std::filesystem::exists(path))
+      return;
+    const CsvTable t = CsvTable::read(path);
+    t.require_columns({"group", "c_MPa", "phi_deg"});
+    for (std::size_t r = 0; r < t.n_rows(); ++r)
+    {
+      const std::string name = t.text(r, "group");
+      MaterialGroup *g = nullptr;
+      for (auto &candidate : groups_)
+        if (candidate.group == name)
+          g = &candidate;
+      check(g != nullptr, t, r, "group '" + clip(name) + "' is not in table3_fitted_parameters.csv (" +
+                                  group_names() + ")");
+      check(!(g->*cohesion), t, r, "group " + name + " appears twice");
+      const double c = t.number(r, "c_MPa"), phi = t.number(r, "phi_deg");
+      check(c > 0 && c <= 1e4, t, r, "c_MPa = " + clip(t.text(r, "c_MPa")) + " must be in (0, 10000]");
+      check(phi > 0 && phi < 90, t, r, "phi_deg = " + clip(t.text(r, "phi_deg")) + " must be in (0, 90)");
+      g->*cohesion       = c * 1e6;
+      g->*friction_angle = phi;
+    }
   }
 
   const MaterialGroup *MaterialTable::lookup(const std::string &name) const

@@ -33,7 +33,7 @@ namespace
   {
     const fs::path dir = box.dir() / folder;
     fs::create_directories(dir);
-    for (const auto *f : {"table3_fitted_parameters.csv", "table4_calibrated.csv"})
+    for (const auto *f : {"table3_fitted_parameters.csv", "table4_calibrated.csv", "simulator_calibrated.csv"})
       fs::copy_file(source(std::string("cases/data/") + f), dir / f);
     return dir.string();
   }

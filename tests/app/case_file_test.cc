@@ -48,7 +48,7 @@ namespace
   }
 } // namespace
 
-TEST(CaseFile, UcsCaseReadsTheGroupFromTables3And4)
+TEST(CaseFile, UcsCaseReadsTheGroupFromItsTables)
 {
   const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), {});
   const auto &p = c.parameters;
@@ -59,8 +59,11 @@ TEST(CaseFile, UcsCaseReadsTheGroupFromTables3And4)
   EXPECT_EQ(p.rock_case.group, "M1");
   expect_close(p.rock.youngs_modulus, 97.07e9); // Table 3
   expect_close(p.rock.poissons_ratio, 0.28);
-  expect_close(p.rock.cohesion, 32.99e6); // Table 4
-  expect_close(p.rock.friction_angle, radians(63.68)); // stored in radians
+  expect_close(p.rock.cohesion, 36.992e6); // simulator_calibrated.csv (Table 4: 32.99 MPa)
+  expect_close(p.rock.friction_angle, radians(60.548)); // stored in radians
+  const auto t4 = app::read_case_file(source("cases/ucs/ucs.prm"), {"Rock/Strength parameters=calibrated"});
+  expect_close(t4.parameters.rock.cohesion, 32.99e6); // Table 4
+  expect_close(t4.parameters.rock.friction_angle, radians(63.68));
   expect_close(p.rock_case.ucs, 282.18e6);
   expect_close(p.rock.hb_sigma_ci, 282.18e6);
   expect_close(p.rock.density, 2900);
@@ -81,6 +84,19 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
   EXPECT_EQ(b.test, "BTS");
   EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
+  // the default disc: the flattened body-fitted one at 2.5 mm (converged there) with the c, phi
+  // the simulator needs for Table 3 (simulator_calibrated.csv, M1)
+  EXPECT_EQ(b.particle_arrangement, sph::ParticleArrangement::body_fitted);
+  expect_close(b.flat_angle, 20 * 3.14159265358979323846 / 180);
+  expect_close(b.sph.spacing, 0.0025);
+  EXPECT_EQ(b.rock_case.strength_source, "simulated");
+  expect_close(b.rock.cohesion, 36.992e6);
+  expect_close(b.rock.friction_angle, 60.548 * 3.14159265358979323846 / 180);
+  // the round lattice disc the default was before, kept for what was measured on it
+  const auto r = app::read_case_file(source("cases/bts/bts-round.prm"), {}).parameters;
+  EXPECT_EQ(r.particle_arrangement, sph::ParticleArrangement::lattice);
+  EXPECT_EQ(r.flat_angle, 0.0);
+  expect_close(r.rock.cohesion, 32.99e6); // Table 4
   // the reference study's flattened disc, body-fitted, at its converged spacing
   const auto f = app::read_case_file(source("cases/bts/bts-flattened.prm"), {}).parameters;
   EXPECT_EQ(f.test, "BTS");
@@ -96,9 +112,9 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
 
 TEST(CaseFile, ParticleArrangementReadsAndIsWrittenBack)
 {
-  const auto lattice = app::read_case_file(source("cases/bts/bts.prm"), {});
+  const auto lattice = app::read_case_file(source("cases/bts/bts-round.prm"), {});
   EXPECT_EQ(lattice.parameters.particle_arrangement, sph::ParticleArrangement::lattice);
-  const auto fitted = app::read_case_file(source("cases/bts/bts.prm"), {"SPH/Particle arrangement=body-fitted"});
+  const auto fitted = app::read_case_file(source("cases/bts/bts-round.prm"), {"SPH/Particle arrangement=body-fitted"});
   EXPECT_EQ(fitted.parameters.particle_arrangement, sph::ParticleArrangement::body_fitted);
   // a restart reads used_parameters.prm: it must build the same particles
   EXPECT_NE(fitted.used_parameters.find("set Particle arrangement"), std::string::npos);
@@ -121,7 +137,7 @@ TEST(CaseFile, ExplicitKeysOverrideTheGroupAndLaterSetWins)
                                           {"Rock/Youngs modulus=50e9", "Rock/Group=M4", "SPH/FORM=1", "SPH/FORM=7"});
   expect_close(c.parameters.rock.youngs_modulus, 50e9);
   expect_close(c.parameters.rock.poissons_ratio, 0.25); // M4
-  expect_close(c.parameters.rock.cohesion, 21.92e6);
+  expect_close(c.parameters.rock.cohesion, 23.992e6); // M4, simulator_calibrated.csv
   EXPECT_EQ(c.parameters.sph.form, sph::Formulation::total_lagrangian);
   // used_parameters.prm holds the resolved values, so that it re-runs the same case
   EXPECT_NE(c.used_parameters.find("5e+10"), std::string::npos) << c.used_parameters;

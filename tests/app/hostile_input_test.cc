@@ -81,7 +81,7 @@ namespace
   std::string data_copy(const fs::path &dir, const std::string &m1_row = "", const std::string &prefix = "")
   {
     fs::create_directories(dir);
-    for (const auto *f : {"table3_fitted_parameters.csv", "table4_calibrated.csv"})
+    for (const auto *f : {"table3_fitted_parameters.csv", "table4_calibrated.csv", "simulator_calibrated.csv"})
       fs::copy_file(source(std::string("cases/data/") + f), dir / f);
     std::string text = read_file(dir / "table3_fitted_parameters.csv");
     if (!m1_row.empty())

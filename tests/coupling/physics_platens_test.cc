@@ -236,7 +236,7 @@ TEST(CoupledBts, CurvedJawsSplitTheDiscAboveTheFlatPlatenStrength)
 {
   // cases/bts (M1, D 50 x 25 mm, 2.5 mm spacing) with flat platens and with the ISRM jaws
   // (arc radius 1.5 disc radii, concave: they cradle the disc)
-  const std::string bts = std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts.prm";
+  const std::string bts = std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts-round.prm";
   CaseParameters flat   = app::read_case_file(bts, {}).parameters;
   CaseParameters jaw    = app::read_case_file(bts, {"Platens/Shape=jaw"}).parameters;
   flat.sph.n_threads = jaw.sph.n_threads = 1; // ctest runs two tests at a time on two cores

@@ -11,7 +11,7 @@ namespace
 {
   std::string bts_case()
   {
-    return std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts.prm";
+    return std::string(COSIM_SOURCE_DIR) + "/cases/bts/bts-round.prm";
   }
 } // namespace
 

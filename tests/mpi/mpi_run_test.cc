@@ -314,7 +314,7 @@ TEST(MpiRun, BtsOnElasticPlatensGivesTheSerialPeak)
   // not the same bits
   Sandbox box;
   const std::vector<std::string> extra = {"Test/Length=0.05", "Platens/Model=elastic"};
-  const Result serial = run_ranks(box, 0, small_case("cases/bts/bts.prm", "serial", extra));
+  const Result serial = run_ranks(box, 0, small_case("cases/bts/bts-round.prm", "serial", extra));
   ASSERT_EQ(serial.status, 0) << serial.err;
   const nlohmann::json s = summary(box.dir() / "serial");
   const double peak      = s["peak_stress_MPa"];
@@ -322,7 +322,7 @@ TEST(MpiRun, BtsOnElasticPlatensGivesTheSerialPeak)
   {
     SCOPED_TRACE(std::to_string(n) + " ranks");
     const std::string folder = "ranks" + std::to_string(n);
-    const Result r           = run_ranks(box, n, small_case("cases/bts/bts.prm", folder, extra));
+    const Result r           = run_ranks(box, n, small_case("cases/bts/bts-round.prm", folder, extra));
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json m = summary(box.dir() / folder);
     EXPECT_EQ(m["n_steps"], s["n_steps"]);
@@ -334,7 +334,7 @@ TEST(MpiRun, BtsOnOneToFourRanksGivesTheSerialHistory)
 {
   // a 50 mm x 50 mm disc, so that 5 mm is fine enough (800 particles)
   Sandbox box;
-  expect_serial_result(box, "cases/bts/bts.prm", {"Test/Length=0.05"}, {1, 2, 3, 4});
+  expect_serial_result(box, "cases/bts/bts-round.prm", {"Test/Length=0.05"}, {1, 2, 3, 4});
 }
 
 TEST(MpiRun, CtcsOnOneToFourRanksGivesTheSerialHistory)
@@ -438,7 +438,8 @@ TEST(MpiRun, LinearCutOnOneToFourRanksAndAfterARestartGivesTheSerialHistoryAndCh
 }
 
 // An unstable distributed run gathers its last good state from every rank, failure modes
-// included (they were written as zeros). The case: a very ductile heterogeneous rock (M1, G_I
+// included (they were written as zeros). The case: a very ductile heterogeneous rock (M1 with
+// Table 4's c, phi, G_I
 // 10^4 J/m^2, Weibull m 10 on 5 mm cells, rock 2) in an 80 x 40 mm cylinder at 4 mm, friction
 // 0.5, whose top rim particle is squeezed out after the rock has begun to fail (docs/
 // limitations.md); serially unstable at step 565 with 1,748 softened particles. The particles
@@ -450,7 +451,7 @@ TEST(MpiRun, AnUnstableRunGathersItsLastGoodFailureModes)
     "Test/Diameter=0.08", "Test/Length=0.04", "SPH/Particle spacing=0.004",
     "Platens/Friction coefficient=0.5", "Rock/Strength scatter=10", "Rock/Scatter length=0.005",
     "Rock/Softening law=fracture energy", "Rock/Fracture energy=10000", "Rock/Scatter seed=2",
-    "Loading/End strain=0.01", "Output/Snapshots=2"};
+    "Loading/End strain=0.01", "Output/Snapshots=2", "Rock/Strength parameters=calibrated"};
   const Result serial = run_ranks(box, 0, small_case("cases/ucs/ucs.prm", "serial", ductile));
   ASSERT_EQ(serial.status, 3) << "the case must go unstable (pick another if it no longer does): "
                               << serial.err;

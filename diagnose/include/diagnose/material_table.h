@@ -2,7 +2,9 @@
 /// @file
 /// Rock material groups (M1..M10 of the reference study) read from a data folder holding
 /// table3_fitted_parameters.csv (E, nu, measured c and phi where known, UCS, BTS) and
-/// table4_calibrated.csv (c and phi back-calculated from UCS and BTS). Units here are SI.
+/// table4_calibrated.csv (c and phi back-calculated from UCS and BTS) and
+/// simulator_calibrated.csv (c and phi with which the simulator reproduces UCS and BTS). Units
+/// here are SI.
 
 #include <diagnose/calibrate.h>
 
@@ -25,6 +27,8 @@ namespace diagnose
     std::optional<double> measured_friction_angle; ///< from CTCS (Table 3) [deg]
     std::optional<double> calibrated_cohesion;     ///< Table 4 [Pa]
     std::optional<double> calibrated_friction_angle; ///< Table 4 [deg]
+    std::optional<double> simulated_cohesion;      ///< simulator_calibrated.csv [Pa]
+    std::optional<double> simulated_friction_angle; ///< simulator_calibrated.csv [deg]
   };
 
   /// The groups of one data folder.
@@ -32,7 +36,8 @@ namespace diagnose
   {
   public:
     /// Reads `directory`/table3_fitted_parameters.csv and, if present,
-    /// `directory`/table4_calibrated.csv; checks every row. Throws InputError with file:line.
+    /// `directory`/table4_calibrated.csv and `directory`/simulator_calibrated.csv; checks every
+    /// row. Throws InputError with file:line.
     static MaterialTable read(const std::string &directory);
 
     /// The group named `name`; InputError listing the known groups when there is none.
@@ -47,6 +52,10 @@ namespace diagnose
     std::string group_names() const;
 
   private:
+    /// A table of c_MPa, phi_deg per group at `path`, if it exists, into the two members.
+    void read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
+                    std::optional<double> MaterialGroup::*friction_angle);
+
     std::vector<MaterialGroup> groups_;
   };
 
