@@ -31,7 +31,7 @@ namespace app::keys
                 sph::RockModel::hoek_brown},
                "constitutive model of the rock");
     s.add_choice("Strength parameters", c.strength_source, "calibrated|simulated|measured|brazilian|envelope",
-                 "c, phi from Table 4 (calibrated to UCS and BTS by the closed forms), simulated (those with which the simulator reproduces the group's UCS and BTS: simulator_calibrated.csv, cosim calibrate --simulate --with-bts on the flattened body-fitted disc), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
+                 "c, phi from Table 4 (calibrated to UCS and BTS by the closed forms), simulated (those with which the simulator reproduces the group's UCS and BTS: simulator_calibrated.csv, cosim calibrate --simulate --with-bts on the flattened body-fitted disc; with Rock/Model = hoek-brown the envelope below with the cut-off of that table, cosim calibrate --simulate --cutoff-from), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
     s.add("Data directory", c.data_directory,
           "folder with table3_fitted_parameters.csv, table4_calibrated.csv, simulator_calibrated.csv; empty = cases/data");
     s.add<double>("Density", m.density, "[kg/m^3] (not in the paper: a typical basalt value)",
@@ -211,13 +211,15 @@ namespace app::keys
       group_c   = b.cohesion;
       group_phi = b.friction_angle;
     }
-    else if (c.strength_source == "envelope")
+    else if (c.strength_source == "envelope" ||
+             (c.strength_source == "simulated" && m.model == sph::RockModel::hoek_brown))
     {
       if (m.model != sph::RockModel::hoek_brown)
         fail("Rock/Strength parameters", "envelope fits a Hoek-Brown envelope: set Rock/Model = hoek-brown");
       if (o.hb_mi || o.hb_a)
         fail(o.hb_mi ? "Rock/Hoek-Brown mi" : "Rock/Hoek-Brown a",
-             "is fitted by Rock/Strength parameters = envelope: leave it empty, or choose calibrated");
+             "is fitted by Rock/Strength parameters = " + c.strength_source +
+               ": leave it empty, or choose calibrated");
       const double ucs = o.ucs.value_or(group.ucs);
       if (!(ucs > 4 * group.bts && group.bts > 0))
         fail("Rock/Strength parameters", "envelope needs UCS > 4 BTS > 0 (group " + c.group + ": UCS " +
@@ -229,6 +231,17 @@ namespace app::keys
       const diagnose::HoekBrownStrength h = diagnose::calibrate_hoek_brown(ucs, group.bts, triaxial);
       o.hb_mi = h.m_b;
       o.hb_a  = h.a;
+      if (!o.tensile_strength && c.strength_source == "simulated")
+      {
+        // the cut-off with which this envelope gives the group's BTS in the simulator's disc
+        if (!group.simulated_cutoff)
+          fail("Rock/Strength parameters",
+               "simulated with Rock/Model = hoek-brown: group " + c.group +
+                 " has no cutoff_MPa in simulator_calibrated.csv of the data folder (cosim calibrate "
+                 "--simulate ... --cutoff-from finds one where the envelope was fitted to triaxial "
+                 "data); or use envelope (the cut-off at the BTS)");
+        o.tensile_strength = *group.simulated_cutoff;
+      }
       if (!o.tensile_strength)
         o.tensile_strength = h.tensile;
     }

@@ -68,12 +68,13 @@ namespace diagnose
     table.read_c_phi(directory + "/table4_calibrated.csv", &MaterialGroup::calibrated_cohesion,
                      &MaterialGroup::calibrated_friction_angle);
     table.read_c_phi(directory + "/simulator_calibrated.csv", &MaterialGroup::simulated_cohesion,
-                     &MaterialGroup::simulated_friction_angle);
+                     &MaterialGroup::simulated_friction_angle, &MaterialGroup::simulated_cutoff);
     return table;
   }
 
   void MaterialTable::read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
-                                 std::optional<double> MaterialGroup::*friction_angle)
+                                 std::optional<double> MaterialGroup::*friction_angle,
+                                 std::optional<double> MaterialGroup::*cutoff)
   {
     if (!std::filesystem::exists(path))
       return;
@@ -94,6 +95,13 @@ namespace diagnose
       check(phi > 0 && phi < 90, t, r, "phi_deg = " + clip(t.text(r, "phi_deg")) + " must be in (0, 90)");
       g->*cohesion       = c * 1e6;
       g->*friction_angle = phi;
+      if (cutoff && t.has_column("cutoff_MPa"))
+        if (const auto f = t.optional_number(r, "cutoff_MPa"))
+        {
+          check(*f > 0 && *f * 1e6 < g->ucs, t, r,
+                "cutoff_MPa = " + clip(t.text(r, "cutoff_MPa")) + " must be in (0, UCS of the group)");
+          g->*cutoff = *f * 1e6;
+        }
     }
   }
 

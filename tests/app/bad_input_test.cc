@@ -211,7 +211,8 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
   // and for --cutoff-from one Hoek-Brown envelope: a disc with another m_i
   const fs::path other_envelope = disc_with("other_envelope.prm", "Hoek-Brown mi = 20");
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
-                         "Rock/Tensile strength=10e6", "--cutoff-from", other_envelope.string()},
+                         "Rock/Strength parameters=calibrated", "--set", "Rock/Tensile strength=10e6",
+                         "--cutoff-from", other_envelope.string()},
                    {"other_envelope.prm", "the Hoek-Brown envelope", "one rock"});
 }
 
@@ -355,6 +356,29 @@ TEST(BadInput, NanInCsvNamesTheLine)
   replace_in_file(fs::path(data) / "table4_calibrated.csv", "M2,30.75", "M2,nan");
   expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
                    {"table4_calibrated.csv:4", "c_MPa", "'nan'", "finite number"});
+}
+
+// Rock/Strength parameters = simulated reads simulator_calibrated.csv: a group without its row,
+// a Hoek-Brown rock without its cut-off and a cut-off out of range are refused, naming the table.
+TEST(BadInput, SimulatedStrengthWithoutItsRowOrCutoffNamesTheTable)
+{
+  Sandbox box;
+  const std::string data = data_copy(box, "data");
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M4,23.992,62.990", "M44,23.992,62.990");
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
+                   {"simulator_calibrated.csv:6", "M44", "not in table3_fitted_parameters.csv"});
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M44,23.992,62.990", "M4,23.992,62.990");
+  // an empty cut-off: the Mohr-Coulomb rock runs, the Hoek-Brown one is refused
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M10,21.787,66.068,6.9618",
+                  "M10,21.787,66.068,");
+  const std::vector<std::string> m10{"--set", "Rock/Data directory=" + data, "--set", "Rock/Group=M10",
+                                     "--set", "Rock/Model=hoek-brown"};
+  std::vector<std::string> args{"run", ucs_case};
+  args.insert(args.end(), m10.begin(), m10.end());
+  expect_bad_input(box, args, {"Rock/Strength parameters", "M10", "cutoff_MPa", "--cutoff-from"});
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M10,21.787,66.068,",
+                  "M10,21.787,66.068,-1");
+  expect_bad_input(box, args, {"simulator_calibrated.csv:12", "cutoff_MPa", "(0, UCS"});
 }
 
 TEST(BadInput, OutOfRangeCsvValueNamesTheLine)

@@ -121,6 +121,27 @@ TEST(CaseFile, ParticleArrangementReadsAndIsWrittenBack)
   EXPECT_NE(fitted.used_parameters.find("body-fitted"), std::string::npos);
 }
 
+TEST(CaseFile, SimulatedHoekBrownTakesTheTablesCutoff)
+{
+  // with Rock/Model = hoek-brown, simulated is the envelope of calibrate --envelope with the
+  // tension cut-off that calibrate --simulate --cutoff-from found for the group's BTS on the
+  // flattened disc (simulator_calibrated.csv: M10 6.9618 MPa), where envelope cuts off at the BTS
+  const std::vector<std::string> hb{"Rock/Group=M10", "Rock/Model=hoek-brown"};
+  auto simulated = hb, envelope = hb;
+  simulated.push_back("Rock/Strength parameters=simulated");
+  envelope.push_back("Rock/Strength parameters=envelope");
+  const auto s = app::read_case_file(source("cases/ucs/ucs.prm"), simulated);
+  const auto e = app::read_case_file(source("cases/ucs/ucs.prm"), envelope).parameters;
+  expect_close(s.parameters.rock.tensile_strength, 6.9618e6);
+  expect_close(e.rock.tensile_strength, 7.99e6);
+  // the same envelope otherwise (calibrate --envelope: sigma_ci = UCS, m_b 10.02, a 0.744)
+  expect_close(s.parameters.rock.hb_sigma_ci, e.rock.hb_sigma_ci);
+  expect_close(s.parameters.rock.hb_mb, e.rock.hb_mb);
+  expect_close(s.parameters.rock.hb_a, e.rock.hb_a);
+  EXPECT_NEAR(e.rock.hb_a, 0.744, 1e-3);
+  EXPECT_NE(s.used_parameters.find("the tension cut-off with which the simulator"), std::string::npos);
+}
+
 TEST(CaseFile, MeasuredStrengthUsesTable3)
 {
   const auto p = app::read_case_file(source("cases/ctcs/ctcs.prm"),

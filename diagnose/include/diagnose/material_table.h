@@ -29,6 +29,9 @@ namespace diagnose
     std::optional<double> calibrated_friction_angle; ///< Table 4 [deg]
     std::optional<double> simulated_cohesion;      ///< simulator_calibrated.csv [Pa]
     std::optional<double> simulated_friction_angle; ///< simulator_calibrated.csv [deg]
+    /// simulator_calibrated.csv, optional column: the tension cut-off with which the group's
+    /// Hoek-Brown envelope (calibrate --envelope) gives its BTS in the simulator [Pa]
+    std::optional<double> simulated_cutoff;
   };
 
   /// The groups of one data folder.
@@ -52,9 +55,11 @@ namespace diagnose
     std::string group_names() const;
 
   private:
-    /// A table of c_MPa, phi_deg per group at `path`, if it exists, into the two members.
+    /// A table of c_MPa, phi_deg per group at `path`, if it exists, into the two members, and
+    /// an optional column cutoff_MPa (empty cells allowed) into `cutoff` where that is given.
     void read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
-                    std::optional<double> MaterialGroup::*friction_angle);
+                    std::optional<double> MaterialGroup::*friction_angle,
+                    std::optional<double> MaterialGroup::*cutoff = nullptr);
 
     std::vector<MaterialGroup> groups_;
   };
