@@ -11,13 +11,15 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
 cosim="${COSIM:-build/bin/cosim}"
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}" # shared machine: do not spin at barriers
-# the default cases: the BTS one is the flattened body-fitted disc, the rock of both has the c, phi
-# with which the simulator reproduces Table 3 (Rock/Strength parameters = simulated)
+# the default cases: the BTS one is the flattened body-fitted disc, the rock of UCS and BTS has the
+# c, phi with which the simulator reproduces Table 3 (Rock/Strength parameters = simulated), the
+# CTCS one is M8's Hoek-Brown envelope with the simulator's cut-off
 disc=cases/bts/bts.prm
-# the studies stored before those became the defaults ran the round lattice disc and Table 4's
-# c, phi: they keep them (`pin` goes in front of each study's own keys; the groups studies clear it)
+# the studies stored before those became the defaults ran the round lattice disc and Mohr-Coulomb
+# with Table 4's c, phi: they keep them (`pin` goes in front of each study's own keys; the groups
+# studies clear it)
 bts=cases/bts/bts-round.prm
-pin=(--set "Rock/Strength parameters=calibrated")
+pin=(--set "Rock/Model=mohr-coulomb" --set "Rock/Strength parameters=calibrated")
 flat=cases/bts/bts-flattened.prm
 ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm

@@ -107,7 +107,11 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
   EXPECT_EQ(t.test, "CTCS");
   EXPECT_EQ(t.rock_case.group, "M8");
   expect_close(t.confining_pressure, 10e6);
-  expect_close(t.rock.cohesion, 28.83e6);
+  // the CTCS case's rock: M8's Hoek-Brown envelope with the simulator's cut-off
+  EXPECT_EQ(t.rock.model, sph::RockModel::hoek_brown);
+  EXPECT_EQ(t.rock_case.strength_source, "simulated");
+  expect_close(t.rock.hb_sigma_ci, 255.90e6);
+  expect_close(t.rock.tensile_strength, 12.01e6);
 }
 
 TEST(CaseFile, ParticleArrangementReadsAndIsWrittenBack)
