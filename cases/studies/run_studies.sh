@@ -119,12 +119,13 @@ run() {
     # the envelope's tension cut-off calibrated through the flattened disc at 1.25 mm (cosim
     # calibrate --simulate cases/ucs/ucs.prm --set "Rock/Group=Mx" --set "Rock/Model=hoek-brown"
     # --set "Rock/Strength parameters=envelope" --set "SPH/Particle arrangement=body-fitted"
-    # --cutoff-from cases/bts/bts-flattened.prm): M8 11.6944, M9 9.17808, M10 6.73974 MPa
+    # --cutoff-from cases/bts/bts-flattened.prm): M8 12.01, M9 9.47, M10 6.9618 MPa (the
+    # cutoff_MPa of cases/data/simulator_calibrated.csv)
     envelope-cutoff-bts-M10) study envelope-cutoff-bts-M10 $flat --set "Rock/Group=M10" --set "Rock/Model=hoek-brown" \
-                    --set "Rock/Strength parameters=envelope" --set "Rock/Tensile strength=6.73974e6" \
+                    --set "Rock/Strength parameters=envelope" --set "Rock/Tensile strength=6.9618e6" \
                     --key "SPH/Particle spacing" --values 0.0025,0.00125,0.001 ;;
     envelope-cutoff-ctcs-M8|envelope-cutoff-ctcs-M9|envelope-cutoff-ctcs-M10)
-                  g=${1##*-}; declare -A cut=([M8]=11.6944e6 [M9]=9.17808e6 [M10]=6.73974e6)
+                  g=${1##*-}; declare -A cut=([M8]=12.01e6 [M9]=9.47e6 [M10]=6.9618e6)
                   study "$1" $ctcs --set "Rock/Group=$g" --set "Rock/Model=hoek-brown" \
                     --set "Rock/Strength parameters=envelope" --set "Rock/Tensile strength=${cut[$g]}" \
                     --key "Test/Confining pressure" --values 10e6,30e6,50e6 ;;
