@@ -48,22 +48,23 @@ namespace sph
     /// (a particle stays on the loaded diameter) whose sectors are nearest in angle to those of
     /// the round arcs between the flats, which share the rest equally. With the ring's even
     /// spacing the corner at a falls inside a sector, whose particle stays on the round arc just
-    /// below the flat: at D/20 (2.5 mm) the flat's particles then cover 82 % of it, the platen
-    /// loads a narrower arc than the specimen's, and the disc's tension reaches 15-25 % too far
-    /// towards the flats (at D/40 the ring's spacing happens to divide the flat: 97 %).
+    /// below the flat: at D/20 (2.5 mm) the flat's particles then covered 82 % of it, the platen
+    /// loaded a narrower arc than the specimen's, the disc's tension reached too far towards the
+    /// flats and its peak was 7 % low (at D/40 the ring's spacing happens to divide the flat).
     void align_outer_ring_with_flats(std::vector<RingPoint> &layer, const std::size_t n,
                                      const double r, const double a)
     {
-      int          best  = 1;
-      double       worst = std::numeric_limits<double>::max();
+      // n = 2 round(pi k) >= 6, so m = 1 leaves each round arc at least one sector (q >= 1)
+      int    best          = 1;
+      double best_mismatch = std::numeric_limits<double>::max();
       for (int m = 1; 2 * m < static_cast<int>(n); m += 2)
         {
           const double flat = 2 * a / m, round = 2 * (pi - 2 * a) / (n - 2 * m);
           const double mismatch = std::abs(std::log(flat / round));
-          if (mismatch < worst)
+          if (mismatch < best_mismatch)
             {
-              worst = mismatch;
-              best  = m;
+              best_mismatch = mismatch;
+              best          = m;
             }
         }
       const int    m     = best;
