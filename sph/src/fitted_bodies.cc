@@ -23,15 +23,24 @@ namespace sph
       double half_angle; ///< half the angle its annulus sector spans (the centre's: pi)
     };
 
+    /// The number of rings n of a layer of outer radius R at spacing dx (dr = R / (n + 1/2)).
+    int ring_count(const double R, const double dx)
+    {
+      return std::max(1, static_cast<int>(std::lround(R / dx - 0.5)));
+    }
+
+    /// The particles on ring k: 2 round(pi k), even, so that the ring is symmetric about both axes.
+    int ring_points(const int k) { return 2 * std::max(1, static_cast<int>(std::lround(pi * k))); }
+
     std::vector<RingPoint> ring_layer(const double R, const double dx, double &dr)
     {
-      const int n_rings = std::max(1, static_cast<int>(std::lround(R / dx - 0.5)));
+      const int n_rings = ring_count(R, dx);
       dr                = R / (n_rings + 0.5);
       std::vector<RingPoint> layer;
       layer.push_back({0.0, 0.0, pi * 0.25 * dr * dr, pi});
       for (int k = 1; k <= n_rings; ++k)
         {
-          const int    n_k   = 2 * std::max(1, static_cast<int>(std::lround(pi * k)));
+          const int    n_k   = ring_points(k);
           const double r     = k * dr;
           const double annulus = 2.0 * pi * r * dr; // pi ((r + dr/2)^2 - (r - dr/2)^2)
           for (int j = 0; j < n_k; ++j)
@@ -43,7 +52,7 @@ namespace sph
       return layer;
     }
 
-    /// The outer ring (the layer's last `n` points, at radius r) re-spaced so that each flat's arc
+    /// The outer ring (the layer's last `n` = ring_points(k) points, at radius r) re-spaced so that each flat's arc
     /// |theta| <= a (and |theta - pi| <= a) holds a whole number m of equal sectors: the odd m
     /// (a particle stays on the loaded diameter) whose sectors are nearest in angle to those of
     /// the round arcs between the flats, which share the rest equally. With the ring's even
@@ -54,7 +63,7 @@ namespace sph
     void align_outer_ring_with_flats(std::vector<RingPoint> &layer, const std::size_t n,
                                      const double r, const double a)
     {
-      // n = 2 round(pi k) >= 6, so m = 1 leaves each round arc at least one sector (q >= 1)
+      // n = ring_points(k) >= 6, so m = 1 leaves each round arc at least one sector (q >= 1)
       int    best          = 1;
       double best_mismatch = std::numeric_limits<double>::max();
       for (int m = 1; 2 * m < static_cast<int>(n); m += 2)
@@ -249,10 +258,9 @@ namespace sph
     std::vector<RingPoint> layer = ring_layer(R, dx, dr);
     if (flat_angle > 0)
       {
-        const int n_rings = static_cast<int>(std::lround(R / dr - 0.5));
-        const int n_outer = 2 * std::max(1, static_cast<int>(std::lround(pi * n_rings)));
-        align_outer_ring_with_flats(layer, static_cast<std::size_t>(n_outer), n_rings * dr,
-                                    0.5 * flat_angle);
+        const int n_rings = ring_count(R, dx);
+        align_outer_ring_with_flats(layer, static_cast<std::size_t>(ring_points(n_rings)),
+                                    n_rings * dr, 0.5 * flat_angle);
       }
     // flats at v = -+ R cos(alpha): the round layer pulled in along its radii onto the
     // flattened boundary rho(theta) = min(R, R cos(alpha) / |cos theta|), theta from the load

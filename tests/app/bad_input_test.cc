@@ -368,7 +368,8 @@ TEST(BadInput, SimulatedStrengthWithoutItsRowOrCutoffNamesTheTable)
   expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Data directory=" + data},
                    {"simulator_calibrated.csv:6", "M44", "not in table3_fitted_parameters.csv"});
   replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M44,23.992,62.990", "M4,23.992,62.990");
-  // an empty cut-off: the Mohr-Coulomb rock runs, the Hoek-Brown one is refused
+  // an empty cut-off (M1-M7 ship with one; their Mohr-Coulomb rock reads it, as the default
+  // cases do) is refused for the Hoek-Brown rock
   replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M10,21.787,66.068,6.9618",
                   "M10,21.787,66.068,");
   const std::vector<std::string> m10{"--set", "Rock/Data directory=" + data, "--set", "Rock/Group=M10",
