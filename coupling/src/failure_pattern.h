@@ -40,7 +40,8 @@ namespace coupling
     /// the first damaged particles from the centre / radius: disc plane for BTS, from the axis
     /// for a cylinder), failure_onset_height_ratio (cylinder: mean |z - centre| / half length),
     /// damaged_volume_fraction (damage >= 0.5 at the end) and, for BTS, crack_alignment (standard
-    /// deviation along the loaded diameter / across it, of the particles with damage >= 0.5).
+    /// deviation along the loaded diameter / across it, of the particles with damage >= 0.5;
+    /// across at least the particles' own width, V^(1/3) / sqrt(12), a crack's resolution).
     /// NaN where nothing was damaged. Then failure_mode_none, _tensile, _shear and _crushed:
     /// the number of particles that failed each way (sph::FailureMode) at the end.
     void report(const sph::Body<3> &body, Summary &s, const sph::Domain *domain = nullptr) const;
