@@ -23,7 +23,8 @@ namespace app
   {
     return "usage: cosim calibrate [--group Mx] [--ucs MPa --bts MPa] [--brazilian | --envelope] [--data DIR] [--csv]\n"
            "       cosim calibrate --simulate UCS_CASE [--set S/K=V] [--seeds N] [--ucs MPa] [--tolerance PCT]\n"
-           "                       [--check BTS_CASE | --with-bts BTS_CASE [--bts MPa] | --cutoff-from BTS_CASE [--bts MPa]]\n"
+           "                       [--check BTS_CASE | --with-bts BTS_CASE [--bts MPa] | --cutoff-from BTS_CASE [--bts MPa] |\n"
+           "                        --mb-from BTS_CASE [--bts MPa]]\n"
            "\n"
            "Back-calculates the Mohr-Coulomb cohesion c and friction angle phi that reproduce a\n"
            "uniaxial compressive strength (UCS) and a Brazilian tensile strength (BTS), with\n"
@@ -68,6 +69,10 @@ namespace app
            "runs the UCS case once as a check. The disc's peak under a cut-off follows its softening\n"
            "and spacing, not the centre's stress state: run the disc where it has converged\n"
            "(cases/bts/bts-flattened.prm).\n"
+           "--mb-from BTS_CASE is its counterpart for a group without triaxial data (envelope gives\n"
+           "a = 1/2 and m_b through the disc centre's closed-form state): it divides m_b alone until\n"
+           "the simulated BTS is the measured one, with no cut-off but the envelope's own tensile\n"
+           "apex sigma_ci / m_b, sigma_ci still the UCS, then runs the UCS case once as a check.\n"
            "\n"
            "Without options it prints the table for every group of the data folder (Table 3's UCS\n"
            "and BTS) next to the calibrated values stored there (Table 4).\n"
@@ -83,7 +88,7 @@ namespace app
            "  --simulate CASE  calibrate through the simulator on this UCS case (see above), with\n"
            "                 --set \"S/K=V\" (repeatable), --seeds N (default 3), --ucs MPa,\n"
            "                 --tolerance PCT (default 0.5), --check BTS_CASE, --with-bts BTS_CASE,\n"
-           "                 --cutoff-from BTS_CASE, --bts MPa\n"
+           "                 --cutoff-from BTS_CASE, --mb-from BTS_CASE, --bts MPa\n"
            "\n"
            "Exit status: 0 done, 2 bad input.\n";
   }

@@ -32,6 +32,7 @@ namespace app
     {
       std::string case_file, check_file, bts_file; ///< bts_file: --with-bts
       std::string cutoff_file;                      ///< --cutoff-from: a Hoek-Brown rock's disc
+      std::string mb_file;                          ///< --mb-from: a Hoek-Brown rock's disc
       std::vector<std::string> overrides;
       int seeds = 3;
       double target = 0;     ///< [Pa]; 0 = the group's Table 3 UCS
@@ -100,6 +101,8 @@ namespace app
           o.bts_file = cursor.value(a);
         else if (a == "--cutoff-from")
           o.cutoff_file = cursor.value(a);
+        else if (a == "--mb-from")
+          o.mb_file = cursor.value(a);
         else if (a == "--bts")
         {
           o.bts_target = cursor.number(a) * 1e6;
@@ -131,9 +134,10 @@ namespace app
           o.csv = true;
         else
           throw InputError("cosim calibrate --simulate: unknown option '" + diagnose::clip(a) + "'" +
-                           did_you_mean(a, {"--simulate", "--check", "--with-bts", "--cutoff-from", "--bts", "--set",
+                           did_you_mean(a, {"--simulate", "--check", "--with-bts", "--cutoff-from", "--mb-from", "--bts", "--set",
                                             "--seeds", "--ucs", "--tolerance", "--csv"}) +
-                           "; accepted: --check, --with-bts, --cutoff-from, --bts, --set, --seeds, --ucs, --tolerance, --csv");
+                           "; accepted: --check, --with-bts, --cutoff-from, --mb-from, --bts, --set, --seeds, --ucs, --tolerance, "
+                           "--csv");
       }
       return o;
     }
@@ -145,13 +149,12 @@ namespace app
       if (p.test != test)
         throw InputError("cosim calibrate --simulate: " + file + ": Test/Type = " + p.test + "; " +
                          (test == "UCS" ? "the calibration runs a UCS case"
-                                        : "--check, --with-bts and --cutoff-from run a BTS case"));
+                                        : "--check, --with-bts, --cutoff-from and --mb-from run a BTS case"));
       if (hoek_brown)
       {
-        if (p.rock.model != sph::RockModel::hoek_brown || !(p.rock.tensile_strength > 0))
-          throw InputError("cosim calibrate --cutoff-from: " + file +
-                           ": calibrates the tension cut-off of Rock/Model = hoek-brown (Rock/Tensile strength > 0, "
-                           "as Rock/Strength parameters = envelope sets it)");
+        if (p.rock.model != sph::RockModel::hoek_brown)
+          throw InputError("cosim calibrate --cutoff-from, --mb-from: " + file +
+                           ": calibrate a Hoek-Brown envelope: set Rock/Model = hoek-brown");
         return p;
       }
       if (p.rock.model != sph::RockModel::mohr_coulomb && p.rock.model != sph::RockModel::mohr_coulomb_cutoff)
@@ -228,7 +231,8 @@ namespace app
       bool   converged = false;
     };
     ScaleFit fit_scale(const Options &o, const char *value_column, const char *peak_column, const int peak_digits,
-                       const double base, const double target, const std::function<Sample(double)> &run)
+                       const double base, const double target, const std::function<Sample(double)> &run,
+                       const std::function<double(double)> &value = nullptr)
     {
       std::printf(o.csv ? "%s,%s,%s,%s,%s\n" : "%-9s %10s %12s %12s  %s\n", "iteration", "scale", value_column,
                   peak_column, "peaks_MPa");
@@ -240,7 +244,7 @@ namespace app
         fit.sample = run(k);
         const Sample &s = fit.sample;
         std::printf(o.csv ? "%d,%.6f,%.4f,%.*f,%s\n" : "%-9d %10.6f %12.4f %12.*f  %s\n", iteration, k,
-                    base * k * 1e-6, peak_digits, s.mean * 1e-6, joined(s.peaks, o.csv).c_str());
+                    value ? value(k) : base * k * 1e-6, peak_digits, s.mean * 1e-6, joined(s.peaks, o.csv).c_str());
         std::fflush(stdout);
         if (std::abs(s.mean / target - 1) <= o.tolerance)
         {
@@ -328,6 +332,10 @@ namespace app
       const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
       if (!(bts_target > 0))
         throw InputError("cosim calibrate --cutoff-from: the case's group has no BTS; give --bts MPa");
+      if (!(bts_case.rock.tensile_strength > 0))
+        throw InputError("cosim calibrate --cutoff-from: " + o.cutoff_file +
+                         ": calibrates the tension cut-off of Rock/Model = hoek-brown (Rock/Tensile strength > 0, "
+                         "as Rock/Strength parameters = envelope sets it)");
       const auto at = [](CaseParameters p, const double k) {
         p.rock.tensile_strength *= k;
         return p;
@@ -354,6 +362,51 @@ namespace app
       }
       return 0;
     }
+
+    /// --mb-from: a Hoek-Brown rock's m_b alone, for a group without triaxial data (a = 1/2 and
+    /// m_b through the disc centre's closed-form state, as Rock/Strength parameters = envelope
+    /// gives it): no tension cut-off but the envelope's own apex sigma_ci / m_b, m_b divided by k
+    /// until the simulated BTS of the disc case is the measured one (a smaller m_b: a stronger
+    /// disc), by fit_scale. sigma_ci stays the UCS; the UCS case runs once at the end as a check.
+    int mb_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
+                       const double ucs_target)
+    {
+      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
+      if (!(bts_target > 0))
+        throw InputError("cosim calibrate --mb-from: the case's group has no BTS; give --bts MPa");
+      if (bts_case.rock.hb_a != 0.5)
+        throw InputError("cosim calibrate --mb-from: " + o.mb_file + ": the envelope has a = " +
+                         std::to_string(bts_case.rock.hb_a) +
+                         ", fitted to triaxial data; --mb-from is for a = 1/2 (a group without triaxial data), "
+                         "--cutoff-from for a fitted envelope");
+      const double mb0 = bts_case.rock.hb_mb;
+      const auto   at  = [mb0](CaseParameters p, const double k) {
+        p.rock.hb_mb            = mb0 / k;
+        p.rock.tensile_strength = 0;
+        return p;
+      };
+      const ScaleFit fit = fit_scale(
+        o, "m_b", "mean_BTS_MPa", 4, mb0, bts_target,
+        [&](const double k) { return sample(at(bts_case, k), o.seeds, "BTS at m_b " + std::to_string(mb0 / k)); },
+        [mb0](const double k) { return mb0 / k; });
+      const Sample &b  = fit.sample;
+      const double  mb = mb0 / fit.k;
+      const Sample  u  = sample(at(ucs_case, fit.k), o.seeds, "check UCS");
+      std::printf("\ntarget BTS %.2f MPa: simulated %.2f MPa (%+.2f %%); check UCS %.2f MPa against %.2f MPa "
+                  "(%+.2f %%)\n",
+                  bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), u.mean * 1e-6,
+                  ucs_target * 1e-6, 100 * (u.mean / ucs_target - 1));
+      std::printf("m_b %.4f (the closed form's %.4f), no cut-off but the apex %.4f MPa; run with:\n"
+                  "  --set \"Rock/Hoek-Brown mi=%.6g\" --set \"Rock/Hoek-Brown a=0.5\" --set \"Rock/Tensile strength=0\"\n",
+                  mb, mb0, bts_case.rock.hb_sigma_ci / mb * 1e-6, mb);
+      if (!fit.converged)
+      {
+        std::fprintf(stderr, "cosim calibrate --mb-from: not converged to %.2f %% in 8 iterations\n",
+                     100 * o.tolerance);
+        return 1;
+      }
+      return 0;
+    }
   } // namespace
 
   bool is_simulated_calibration(const std::vector<std::string> &args)
@@ -369,17 +422,20 @@ namespace app
     const Options o = parse(args);
     if (o.case_file.empty())
       throw InputError("cosim calibrate: --simulate needs a UCS case file");
-    if (!o.cutoff_file.empty())
+    if (!o.cutoff_file.empty() || !o.mb_file.empty())
     {
-      if (!o.check_file.empty() || !o.bts_file.empty())
-        throw InputError("cosim calibrate: --cutoff-from calibrates on its own BTS case; leave out --check and --with-bts");
+      const bool        mb   = !o.mb_file.empty();
+      const std::string file = mb ? o.mb_file : o.cutoff_file;
+      if (!o.check_file.empty() || !o.bts_file.empty() || (mb && !o.cutoff_file.empty()))
+        throw InputError("cosim calibrate: --cutoff-from and --mb-from each calibrate on their own BTS case; "
+                         "give one of them, without --check and --with-bts");
       const CaseParameters ucs  = read_case(o.case_file, o.overrides, "UCS", true);
-      const CaseParameters disc = read_case(o.cutoff_file, o.overrides, "BTS", true);
-      require_same_rock(ucs, disc, o.cutoff_file);
+      const CaseParameters disc = read_case(file, o.overrides, "BTS", true);
+      require_same_rock(ucs, disc, file);
       const double target = o.target > 0 ? o.target : ucs.rock_case.ucs;
       if (!(target > 0))
         throw InputError("cosim calibrate --simulate: the case's group has no UCS; give --ucs MPa");
-      return cutoff_calibration(o, ucs, disc, target);
+      return mb ? mb_calibration(o, ucs, disc, target) : cutoff_calibration(o, ucs, disc, target);
     }
     const CaseParameters base = read_case(o.case_file, o.overrides, "UCS");
     // the check case reads the same overrides: the same rock, another test
@@ -397,7 +453,7 @@ namespace app
       return joint_calibration(o, base, disc, target);
     }
     if (o.bts_target > 0)
-      throw InputError("cosim calibrate: --bts is the target of --with-bts or --cutoff-from");
+      throw InputError("cosim calibrate: --bts is the target of --with-bts, --cutoff-from or --mb-from");
 
     const ScaleFit fit = fit_scale(o, "cohesion_MPa", "mean_UCS_MPa", 3, base.rock.cohesion, target, [&](const double k) {
       return sample(scaled(base, k), o.seeds, "UCS at scale " + std::to_string(k));

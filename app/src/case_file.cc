@@ -710,9 +710,13 @@ namespace app
            << (rc.strength_source == "measured" ? "measured c, phi: Table 3"
                : rc.strength_source == "brazilian"
                  ? "c, phi calibrated to UCS and BTS at the disc centre's stress state"
-               : rc.strength_source == "simulated" && p.rock.model == sph::RockModel::hoek_brown
+               : rc.strength_source == "simulated" && p.rock.model == sph::RockModel::hoek_brown &&
+                     p.rock.tensile_strength > 0
                  ? "Hoek-Brown envelope fitted to all its strengths, the tension cut-off with which the "
                    "simulator reproduces its BTS: simulator_calibrated.csv"
+               : rc.strength_source == "simulated" && p.rock.model == sph::RockModel::hoek_brown
+                 ? "Hoek-Brown envelope through its UCS, a = 1/2, the m_b with which the simulator "
+                   "reproduces its BTS, no cut-off but the envelope's apex: simulator_calibrated.csv"
                : rc.strength_source == "simulated"
                  ? "c, phi with which the simulator reproduces its UCS and BTS: simulator_calibrated.csv"
                : rc.strength_source == "envelope" ? "Hoek-Brown envelope fitted to all its strengths"
@@ -722,7 +726,8 @@ namespace app
           (rc.strength_source == "envelope" || rc.strength_source == "simulated"))
         used << "# Rock/Strength parameters = " << rc.strength_source << ": Hoek-Brown sigma_ci = " << format(p.rock.hb_sigma_ci)
              << " Pa, m_b = " << format(p.rock.hb_mb) << ", a = " << format(p.rock.hb_a)
-             << ", tension cut-off " << format(p.rock.tensile_strength) << " Pa\n";
+             << ", tension cut-off " << format(p.rock.tensile_strength) << " Pa"
+             << (p.rock.tensile_strength > 0 ? "" : " (none: the apex sigma_ci / m_b)") << "\n";
       d.prm.print_parameters(used, dealii::ParameterHandler::PRM);
       result.used_parameters = used.str();
     }

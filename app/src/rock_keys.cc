@@ -31,7 +31,7 @@ namespace app::keys
                 sph::RockModel::hoek_brown},
                "constitutive model of the rock");
     s.add_choice("Strength parameters", c.strength_source, "calibrated|simulated|measured|brazilian|envelope",
-                 "c, phi from Table 4 (calibrated to UCS and BTS by the closed forms), simulated (those with which the simulator reproduces the group's UCS and BTS: simulator_calibrated.csv, cosim calibrate --simulate --with-bts on the flattened body-fitted disc; with Rock/Model = hoek-brown the envelope below with the cut-off of that table, cosim calibrate --simulate --cutoff-from), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
+                 "c, phi from Table 4 (calibrated to UCS and BTS by the closed forms), simulated (those with which the simulator reproduces the group's UCS and BTS: simulator_calibrated.csv, cosim calibrate --simulate --with-bts on the flattened body-fitted disc; with Rock/Model = hoek-brown the envelope below with the cut-off of that table, cosim calibrate --simulate --cutoff-from, or for a group without triaxial data a = 1/2 and that table's m_b, no cut-off but the envelope's apex, cosim calibrate --simulate --mb-from), Table 3 (measured by CTCS, groups M8-M10) or brazilian (calibrated to UCS and to BTS at the disc centre's stress state, cosim calibrate --brazilian); envelope: with Rock/Model = hoek-brown, sigma_ci, m_b and a fitted to all of the group's strengths (UCS, BTS at the disc centre's state, Table 3's measured envelope at 10, 30, 50 MPa where it has one) and a tension cut-off at the BTS (cosim calibrate --envelope)");
     s.add("Data directory", c.data_directory,
           "folder with table3_fitted_parameters.csv, table4_calibrated.csv, simulator_calibrated.csv; empty = cases/data");
     s.add<double>("Density", m.density, "[kg/m^3] (not in the paper: a typical basalt value)",
@@ -231,6 +231,19 @@ namespace app::keys
       const diagnose::HoekBrownStrength h = diagnose::calibrate_hoek_brown(ucs, group.bts, triaxial);
       o.hb_mi = h.m_b;
       o.hb_a  = h.a;
+      if (c.strength_source == "simulated" && triaxial.empty())
+      {
+        // no triaxial data: a = 1/2 and the m_b with which the envelope, with no cut-off but its
+        // own tensile apex, gives the group's BTS in the simulator's disc
+        if (!group.simulated_mb)
+          fail("Rock/Strength parameters",
+               "simulated with Rock/Model = hoek-brown: group " + c.group +
+                 " has no triaxial data and no mb in simulator_calibrated.csv of the data folder "
+                 "(cosim calibrate --simulate ... --mb-from finds one); or use envelope");
+        o.hb_mi = *group.simulated_mb;
+        if (!o.tensile_strength)
+          o.tensile_strength = 0.0;
+      }
       if (!o.tensile_strength && c.strength_source == "simulated")
       {
         // the cut-off with which this envelope gives the group's BTS in the simulator's disc

@@ -68,13 +68,15 @@ namespace diagnose
     table.read_c_phi(directory + "/table4_calibrated.csv", &MaterialGroup::calibrated_cohesion,
                      &MaterialGroup::calibrated_friction_angle);
     table.read_c_phi(directory + "/simulator_calibrated.csv", &MaterialGroup::simulated_cohesion,
-                     &MaterialGroup::simulated_friction_angle, &MaterialGroup::simulated_cutoff);
+                     &MaterialGroup::simulated_friction_angle, &MaterialGroup::simulated_cutoff,
+                     &MaterialGroup::simulated_mb);
     return table;
   }
 
   void MaterialTable::read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
                                  std::optional<double> MaterialGroup::*friction_angle,
-                                 std::optional<double> MaterialGroup::*cutoff)
+                                 std::optional<double> MaterialGroup::*cutoff,
+                                 std::optional<double> MaterialGroup::*mb)
   {
     if (!std::filesystem::exists(path))
       return;
@@ -101,6 +103,12 @@ namespace diagnose
           check(*f > 0 && *f * 1e6 < g->ucs, t, r,
                 "cutoff_MPa = " + clip(t.text(r, "cutoff_MPa")) + " must be in (0, UCS of the group)");
           g->*cutoff = *f * 1e6;
+        }
+      if (mb && t.has_column("mb"))
+        if (const auto m = t.optional_number(r, "mb"))
+        {
+          check(*m > 0 && *m <= 1000, t, r, "mb = " + clip(t.text(r, "mb")) + " must be in (0, 1000]");
+          g->*mb = *m;
         }
     }
   }

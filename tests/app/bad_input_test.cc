@@ -182,12 +182,13 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
                    {"mohr-coulomb or mohr-coulomb-cutoff"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--seeds", "0"}, {"--seeds", "[1, 100]"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--check", ucs_case},
-                   {"--check, --with-bts and --cutoff-from run a BTS case"});
+                   {"--check, --with-bts, --cutoff-from and --mb-from run a BTS case"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--sets", "x"}, {"unknown option '--sets'", "--set"});
   expect_bad_input(box, {"calibrate", "--simulate", (box.dir() / "missing.prm").string()}, {"missing.prm"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Scatter length=0.005"},
                    {"Rock/Scatter length", "Rock/Strength scatter > 0"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--bts", "15"}, {"--bts is the target of --with-bts"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--bts", "15"},
+                   {"--bts is the target of --with-bts, --cutoff-from or --mb-from"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case, "--check", bts_case},
                    {"--check is for the UCS-only calibration"});
   // --cutoff-from scales a Hoek-Brown envelope's cut-off: not a Mohr-Coulomb rock's, not with the
@@ -195,9 +196,17 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--cutoff-from", bts_case},
                    {"--cutoff-from", "Rock/Model = hoek-brown"});
   expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+                         "Rock/Strength parameters=calibrated", "--cutoff-from", bts_case},
+                   {"--cutoff-from", "Rock/Tensile strength > 0"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=envelope", "--set", "Rock/Group=M10", "--cutoff-from", bts_case,
                          "--with-bts", bts_case},
-                   {"--cutoff-from calibrates on its own BTS case"});
+                   {"--cutoff-from and --mb-from each calibrate on their own BTS case"});
+  // --mb-from divides the m_b of an envelope of a = 1/2 (no triaxial data): M10's envelope has a
+  // fitted to its triaxial rows
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+                         "Rock/Strength parameters=envelope", "--set", "Rock/Group=M10", "--mb-from", bts_case},
+                   {"--mb-from", "a = 0.74", "--cutoff-from for a fitted envelope"});
   // the two cases must be one rock: the BTS case with one more Rock key
   const auto disc_with = [&](const std::string &name, const std::string &rock_line) {
     const fs::path path = box.dir() / name;
@@ -380,6 +389,14 @@ TEST(BadInput, SimulatedStrengthWithoutItsRowOrCutoffNamesTheTable)
   replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M10,21.787,66.068,",
                   "M10,21.787,66.068,-1");
   expect_bad_input(box, args, {"simulator_calibrated.csv:12", "cutoff_MPa", "(0, UCS"});
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M10,21.787,66.068,-1", "M10,21.787,66.068,6.9618");
+  // a group without triaxial data needs its mb for the Hoek-Brown rock, a valid one
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M1,36.992,60.548,,16.4277", "M1,36.992,60.548,,");
+  const std::vector<std::string> m1{"run", ucs_case, "--set", "Rock/Data directory=" + data, "--set",
+                                    "Rock/Model=hoek-brown"};
+  expect_bad_input(box, m1, {"Rock/Strength parameters", "group M1", "no mb", "--mb-from"});
+  replace_in_file(fs::path(data) / "simulator_calibrated.csv", "M1,36.992,60.548,,", "M1,36.992,60.548,,-1");
+  expect_bad_input(box, m1, {"simulator_calibrated.csv:3", "mb = -1", "(0, 1000]"});
 }
 
 TEST(BadInput, OutOfRangeCsvValueNamesTheLine)

@@ -146,6 +146,28 @@ TEST(CaseFile, SimulatedHoekBrownTakesTheTablesCutoff)
   EXPECT_NE(s.used_parameters.find("the tension cut-off with which the simulator"), std::string::npos);
 }
 
+TEST(CaseFile, SimulatedHoekBrownWithoutTriaxialDataTakesTheTablesMb)
+{
+  // a group without triaxial data: a = 1/2 and the m_b that calibrate --simulate --mb-from found
+  // for its BTS on the flattened disc (simulator_calibrated.csv: M1 16.4277), no cut-off but the
+  // envelope's apex; envelope has the closed form's m_b (UCS^2 - 16 BTS^2) / (UCS BTS) = 17.41
+  // and a cut-off at the BTS
+  const std::vector<std::string> hb{"Rock/Group=M1", "Rock/Model=hoek-brown"};
+  auto simulated = hb, envelope = hb;
+  simulated.push_back("Rock/Strength parameters=simulated");
+  envelope.push_back("Rock/Strength parameters=envelope");
+  const auto s = app::read_case_file(source("cases/bts/bts.prm"), simulated);
+  const auto e = app::read_case_file(source("cases/bts/bts.prm"), envelope).parameters;
+  expect_close(s.parameters.rock.hb_mb, 16.4277);
+  EXPECT_EQ(s.parameters.rock.hb_a, 0.5);
+  EXPECT_EQ(s.parameters.rock.tensile_strength, 0.0);
+  expect_close(s.parameters.rock.hb_sigma_ci, 282.18e6);
+  EXPECT_NEAR(e.rock.hb_mb, (282.18 * 282.18 - 16 * 15.43 * 15.43) / (282.18 * 15.43), 1e-9);
+  expect_close(e.rock.tensile_strength, 15.43e6);
+  EXPECT_NE(s.used_parameters.find("the m_b with which the simulator"), std::string::npos);
+  EXPECT_NE(s.used_parameters.find("none: the apex"), std::string::npos);
+}
+
 TEST(CaseFile, MeasuredStrengthUsesTable3)
 {
   const auto p = app::read_case_file(source("cases/ctcs/ctcs.prm"),

@@ -199,6 +199,112 @@ namespace
                                        MaterialState(), p);
     EXPECT_LT(principal(uni.stress)[2], 0.0);
   }
+
+  // Softening Hoek-Brown (s scaled by the strength factor 1 - 0.8 d, d = kappa / 1e-3): on the
+  // uniaxial path (the edge s0 = s1) and on a triaxial extension path (the edge s1 = s2) every
+  // plastic state lies on the envelope of its own damage, so the softening's fixed point holds
+  // (1e-8 of sigma_ci: the returns converge to 1e-13), and the damage grows to 1.
+  TEST(SphHoekBrown, SofteningStatesLieOnTheirDamagesEnvelope)
+  {
+    MaterialParameters m;
+    m.model             = RockModel::hoek_brown;
+    m.youngs_modulus    = 60e9;
+    m.poissons_ratio    = 0.25;
+    m.hb_sigma_ci       = 150e6;
+    m.hb_mb             = 12;
+    m.hb_a              = 0.5;
+    m.softening_strain  = 1e-3;
+    m.residual_fraction = 0.2;
+    const ModelConstants p = make_model_constants(m);
+    for (const Principal &path : {Principal(0, 0, -20e6), Principal(-3e6, -20e6, -20e6)})
+      {
+        MaterialState state;
+        Tensor3       stress = Tensor3::Zero();
+        const Tensor3 de     = strain_for(path, p);
+        double        last   = 0;
+        int           plastic = 0;
+        for (int k = 0; k < 80; ++k)
+          {
+            const auto up = update_hoek_brown(stress, de, state, p);
+            EXPECT_GE(up.state.damage, last);
+            last   = up.state.damage;
+            stress = up.stress;
+            state  = up.state;
+            if (state.plastic_strain > 0)
+              {
+                ++plastic;
+                const Principal s  = principal(stress);
+                const double    ss = strength_factor(state.damage, p);
+                const double    f  = (s[0] - s[2]) - 150e6 * std::sqrt(-12 * s[0] / 150e6 + ss);
+                EXPECT_NEAR(f, 0.0, 1e-8 * 150e6) << "step " << k << ", damage " << state.damage;
+              }
+          }
+        EXPECT_GT(plastic, 10);
+        EXPECT_NEAR(state.damage, 1.0, 1e-12) << "the loading must reach the residual strength";
+      }
+  }
+
+  // Newton's return (faces and edges) against the successive tangent planes, an independent
+  // algorithm for the same closest point: random trials around the envelope of two a's and two
+  // dilation angles, near the edges s0 = s1 (uniaxial and triaxial compression) and s1 = s2
+  // (extension) too.
+  TEST(SphHoekBrown, NewtonReturnMatchesTangentPlanes)
+  {
+    for (const double a : {0.5, 0.62})
+      for (const double psi_deg : {0.0, 20.0})
+        {
+          MaterialParameters m;
+          m.model          = RockModel::hoek_brown;
+          m.youngs_modulus = 60e9;
+          m.poissons_ratio = 0.25;
+          m.hb_sigma_ci    = 150e6;
+          m.hb_mb          = 12;
+          m.hb_a           = a;
+          m.dilation_angle = psi_deg * M_PI / 180;
+          const ModelConstants p = make_model_constants(m);
+          const double         sci = 150e6, apex = sci / 12;
+          unsigned             seed = 12345;
+          const auto uniform = [&seed]() {
+            seed = seed * 1103515245u + 12345u;
+            return ((seed >> 8) & 0xffff) / 65535.0;
+          };
+          int newton = 0, plastic = 0, edges = 0;
+          for (int k = 0; k < 3000; ++k)
+            {
+              // s0 in (-1.5 sci, apex), s2 below it by up to 3 sci; s1 at a random fraction, a
+              // third of the trials on an edge
+              const double s0 = apex - 1.5 * sci * uniform();
+              const double s2 = s0 - 3.0 * sci * uniform();
+              const double t  = uniform();
+              const double s1 = k % 3 == 0 ? s0 : (k % 3 == 1 ? s2 : s2 + t * (s0 - s2));
+              const Principal trial(s0, s1, s2);
+              const double    base = -12 * s0 / sci + 1;
+              if ((s0 - s2) - sci * std::pow(base, a) <= 1e-6 * sci)
+                continue;
+              ++plastic;
+              Principal r = trial, q = trial;
+              const bool ok = return_hoek_brown_newton(r, sci, 12, a, 1.0, p);
+              return_hoek_brown_tangent_planes(q, sci, 12, a, 1.0, p);
+              if (!ok)
+                {
+                  EXPECT_EQ(r, trial) << "a failed Newton return leaves s unchanged";
+                  continue;
+                }
+              ++newton;
+              edges += r[0] == r[1] || r[1] == r[2];
+              // tolerance: both converge to 1e-13 sci per step; the tangent planes' linear
+              // convergence leaves up to ~1e-10 sci where their ratio nears 1
+              EXPECT_LT((r - q).cwiseAbs().maxCoeff(), 1e-8 * sci)
+                << "a " << a << " psi " << psi_deg << " trial " << trial.transpose() << ": Newton "
+                << r.transpose() << ", tangent planes " << q.transpose();
+              const double on = (r[0] - r[2]) - sci * std::pow(-12 * r[0] / sci + 1, a);
+              EXPECT_LT(std::abs(on), 1e-9 * sci);
+            }
+          // Newton takes nearly every trial below the apex (the rest: returns to the apex)
+          EXPECT_GT(newton, 0.95 * plastic) << "a " << a << " psi " << psi_deg;
+          EXPECT_GT(edges, 0.2 * newton);
+        }
+  }
 } // namespace
 
 namespace

@@ -32,6 +32,10 @@ namespace diagnose
     /// simulator_calibrated.csv, optional column: the tension cut-off with which the group's
     /// Hoek-Brown envelope (calibrate --envelope) gives its BTS in the simulator [Pa]
     std::optional<double> simulated_cutoff;
+    /// simulator_calibrated.csv, optional column mb: for a group without triaxial data, the m_b
+    /// with which a Hoek-Brown envelope of a = 1/2 through its UCS, with no cut-off but its own
+    /// tensile apex, gives its BTS in the simulator [-]
+    std::optional<double> simulated_mb;
   };
 
   /// The groups of one data folder.
@@ -56,10 +60,12 @@ namespace diagnose
 
   private:
     /// A table of c_MPa, phi_deg per group at `path`, if it exists, into the two members, and
-    /// an optional column cutoff_MPa (empty cells allowed) into `cutoff` where that is given.
+    /// optional columns cutoff_MPa and mb (empty cells allowed) into `cutoff` and `mb` where
+    /// those are given.
     void read_c_phi(const std::string &path, std::optional<double> MaterialGroup::*cohesion,
                     std::optional<double> MaterialGroup::*friction_angle,
-                    std::optional<double> MaterialGroup::*cutoff = nullptr);
+                    std::optional<double> MaterialGroup::*cutoff = nullptr,
+                    std::optional<double> MaterialGroup::*mb     = nullptr);
 
     std::vector<MaterialGroup> groups_;
   };

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 namespace sph::rock
@@ -475,15 +476,40 @@ namespace sph::rock
       const Principal ep = principal_compliance_times(s_trial - s, prm);
       return std::sqrt(2.0 / 3.0 * ep.squaredNorm());
     };
+    // g(x) = k(x) - x, k(x) = plastic_strain_of(x): k grows with x (the weaker the surface, the
+    // larger the return), so a fixed-point step x -> k(x) never crosses the root. Secant steps
+    // through the last two points where they stay inside the bracket of the root known so far
+    // (lo: g >= 0, hi: g < 0), fixed-point steps otherwise: with linear softening k is linear
+    // in x on one face of the surface, and the secant lands on the root at once.
     Principal s;
-    double    dkappa    = 0;
-    bool      converged = false;
-    for (int it = 0; it < 50 && !converged; ++it)
-      {
-        const double dk = plastic_strain_of(dkappa, s);
-        converged       = prm.softening_strain <= 0 || close(dk, dkappa);
-        dkappa          = dk;
-      }
+    double    dkappa    = plastic_strain_of(0.0, s);
+    bool      converged = prm.softening_strain <= 0 || close(dkappa, 0.0);
+    {
+      double x_prev = 0, g_prev = dkappa, x = dkappa;
+      double lo = 0, hi = std::numeric_limits<double>::infinity();
+      for (int it = 0; it < 50 && !converged; ++it)
+        {
+          const double k  = plastic_strain_of(x, s);
+          const double gx = k - x;
+          converged       = close(k, x);
+          dkappa          = k;
+          if (converged)
+            break;
+          if (gx >= 0)
+            lo = std::max(lo, x);
+          else
+            hi = std::min(hi, x);
+          double       next  = k;
+          const double slope = (gx - g_prev) / (x - x_prev);
+          if (slope < 0 && std::isfinite(slope))
+            {
+              const double xs = x - gx / slope;
+              if (xs > lo && xs < hi)
+                next = xs;
+            }
+          x_prev = x, g_prev = gx, x = next;
+        }
+    }
     if (!converged)
       {
         // The fixed point creeps up on the root from below (the weaker the surface, the larger
@@ -606,9 +632,155 @@ namespace sph::rock
                           classify);
   }
 
-  /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), returned by
-  /// successive tangent Mohr-Coulomb planes (converged to 1e-12), dilation psi as the potential,
-  /// tension cut-off at s sigma_ci / m_b. Softening scales s (and the cut-off) by the strength factor.
+  /// base^a of the Hoek-Brown envelope; a square root where a = 1/2 (intact rock's usual a).
+  inline double hoek_brown_power(const double base, const double a)
+  {
+    return a == 0.5 ? std::sqrt(base) : std::pow(base, a);
+  }
+
+  /// The return of sorted principal stresses s onto the Hoek-Brown envelope
+  /// F(x, z) = (x - z) - sci (-mb x / sci + ss)^a <= 0 for every pair x >= z of them, by Newton's
+  /// method on the plastic multipliers, flow along D b with b = (1 + sin psi, 0, -(1 - sin psi))
+  /// on each active face (dilation psi). First the main face F(s0, s2) = 0: f(l) is convex and
+  /// decreasing in l (the deviator falls linearly, the strength grows as a concave power of a
+  /// linearly growing base), so Newton from l = 0 climbs monotonically to the root. Where that
+  /// breaks the order s0 >= s1 >= s2, the edge it crossed: s0 = s1 (F(s0, s2) = F(s1, s2) = 0)
+  /// or s1 = s2 (F(s0, s2) = F(s0, s1) = 0), two multipliers, both >= 0. Returns false where this
+  /// return does not apply (the trial beyond the tensile apex, an edge's Newton not converging or
+  /// with a negative multiplier, the apex reached); s is then unchanged and the caller takes the
+  /// general return.
+  inline bool return_hoek_brown_newton(Principal &s, const double sci, const double mb,
+                                       const double a, const double ss, const ModelConstants &p)
+  {
+    const double tol = 1e-13 * sci;
+    // strength sci base^a of a principal stress x and its slope N = dF/dx (base > 0)
+    const auto strength = [&](const double x, double &N) {
+      const double base = -mb * x / sci + ss;
+      if (!(base > 0))
+        return std::numeric_limits<double>::quiet_NaN();
+      const double pw = hoek_brown_power(base, a);
+      N               = 1.0 + a * mb * pw / base;
+      return sci * pw;
+    };
+    const Principal bA(1.0 + p.sin_psi, 0.0, -(1.0 - p.sin_psi));
+    const Principal DbA = principal_stiffness_times(bA, p);
+    double          N0  = 0;
+    if (!(-mb * s[0] / sci + ss > 0))
+      return false;
+    // the multipliers at which the main face's return would cross an edge (s0 = s1, s1 = s2):
+    // the iterates grow monotonically to the root, so one beyond an edge proves the edge active
+    const double dU = DbA[0] - DbA[1], dL = DbA[1] - DbA[2];
+    const double lU = dU > 0 ? (s[0] - s[1]) / dU : std::numeric_limits<double>::infinity();
+    const double lL = dL > 0 ? (s[1] - s[2]) / dL : std::numeric_limits<double>::infinity();
+    double       l  = 0;
+    Principal    r  = s;
+    bool         edge = false;
+    for (int it = 0; it < 40; ++it)
+      {
+        r                 = s - l * DbA;
+        const double k    = strength(r[0], N0);
+        const double f    = (r[0] - r[2]) - k;
+        const double df   = -(N0 * DbA[0] - DbA[2]);
+        const double step = -f / df;
+        if (!std::isfinite(step))
+          return false;
+        l += step;
+        if (l > lU || l > lL)
+          {
+            edge = true;
+            break;
+          }
+        if (std::abs(step) * (std::abs(DbA[0]) + std::abs(DbA[2])) <= tol)
+          break;
+      }
+    r = s - l * DbA;
+    if (!(l >= 0))
+      return false;
+    if (!edge && r[0] >= r[1] && r[1] >= r[2])
+      {
+        s = r;
+        return true;
+      }
+    // an edge: the second face, its flow direction and the gradients' pattern
+    const bool      upper = edge ? lU <= lL : r[1] > r[0];
+    const Principal bB    = upper ? Principal(0.0, 1.0 + p.sin_psi, -(1.0 - p.sin_psi))
+                                  : Principal(1.0 + p.sin_psi, -(1.0 - p.sin_psi), 0.0);
+    const Principal DbB   = principal_stiffness_times(bB, p);
+    double          lA = 0, lB = 0;
+    bool            converged = false;
+    for (int it = 0; it < 40 && !converged; ++it)
+      {
+        r = s - lA * DbA - lB * DbB;
+        double       Na = 0, Nb = 0;
+        const double ka = strength(r[0], Na);
+        const double kb = strength(upper ? r[1] : r[0], Nb);
+        const double fa = (r[0] - r[2]) - ka;
+        const double fb = upper ? (r[1] - r[2]) - kb : (r[0] - r[1]) - kb;
+        const Principal ga(Na, 0.0, -1.0);
+        const Principal gb = upper ? Principal(0.0, Nb, -1.0) : Principal(Nb, -1.0, 0.0);
+        const double    j11 = ga.dot(DbA), j12 = ga.dot(DbB), j21 = gb.dot(DbA), j22 = gb.dot(DbB);
+        const double    det = j11 * j22 - j12 * j21;
+        const double    dA  = (fa * j22 - j12 * fb) / det;
+        const double    dB  = (j11 * fb - j21 * fa) / det;
+        if (!std::isfinite(dA) || !std::isfinite(dB))
+          return false;
+        lA += dA;
+        lB += dB;
+        converged = (std::abs(dA) + std::abs(dB)) * DbA.cwiseAbs().maxCoeff() <= tol;
+      }
+    r = s - lA * DbA - lB * DbB;
+    if (!converged || !(lA >= 0 && lB >= 0))
+      return false;
+    if (upper)
+      {
+        if (!(r[1] >= r[2]))
+          return false;
+        r[1] = r[0]; // equal at the solution; remove round-off
+      }
+    else
+      {
+        if (!(r[0] >= r[1]))
+          return false;
+        r[2] = r[1];
+      }
+    s = r;
+    return true;
+  }
+
+  /// The return of sorted principal stresses s onto the Hoek-Brown envelope (as
+  /// return_hoek_brown_newton) by successive tangent Mohr-Coulomb planes: the plane tangent to the
+  /// envelope at the last return's s0, the Mohr-Coulomb return of the trial onto it, until two
+  /// returns agree to 1e-13 sci. Linear convergence, but it takes every case: faces, edges and
+  /// trials beyond the tensile apex (the tangent at the apex).
+  inline void return_hoek_brown_tangent_planes(Principal &s, const double sci, const double mb,
+                                               const double a, const double ss,
+                                               const ModelConstants &p)
+  {
+    const Principal s_trial = s;
+    for (int it = 0; it < 60; ++it)
+      {
+        // tangent plane of the envelope p1 = p3 + sci (mb p3/sci + s)^a at p3 = -s[0]
+        const double p3   = std::max(-s[0], -ss * sci / mb * (1.0 - 1e-9));
+        const double base = mb * p3 / sci + ss;
+        const double pw   = hoek_brown_power(base, a);
+        const double N    = 1.0 + a * mb * pw / base;
+        const double q0   = p3 + sci * pw - N * p3;
+        const double sphi = (N - 1.0) / (N + 1.0), cphi = std::sqrt(1.0 - sphi * sphi);
+        const double c    = q0 * (1.0 - sphi) / (2.0 * cphi);
+        Principal    t    = s_trial;
+        return_mohr_coulomb(t, c, sphi, cphi, p.sin_psi, p);
+        const bool done = (t - s).cwiseAbs().maxCoeff() <= 1e-13 * sci;
+        s               = t;
+        if (done)
+          break;
+      }
+  }
+
+  /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), dilation psi as
+  /// the potential, tension cut-off at s sigma_ci / m_b. On the envelope's faces and edges the return
+  /// is Newton's (return_hoek_brown_newton); where that does not apply (beyond the tensile apex)
+  /// by successive tangent Mohr-Coulomb planes (converged to 1e-13 sigma_ci). Softening scales s (and the
+  /// cut-off) by the strength factor.
   inline StressUpdate update_hoek_brown(const Tensor3 &stress_old, const Tensor3 &strain_increment,
                                         const MaterialState &old_state, const ModelConstants &prm)
   {
@@ -619,31 +791,14 @@ namespace sph::rock
       const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
       const auto   f   = [&](const Principal &t) {
         const double base = std::max(-mb * t[0] / sci + ss, 0.0);
-        return (t[0] - t[2]) - sci * std::pow(base, a);
+        return (t[0] - t[2]) - sci * hoek_brown_power(base, a);
       };
-      bool            pl      = false;
-      const Principal s_trial = s;
+      bool pl = false;
       if (f(s) > 1e-12 * sci)
         {
-          pl          = true;
-          Principal r = s;
-          for (int it = 0; it < 60; ++it)
-            {
-              // tangent plane of the envelope p1 = p3 + sci (mb p3/sci + s)^a at p3 = -r[0]
-              const double p3   = std::max(-r[0], -ss * sci / mb * (1.0 - 1e-9));
-              const double base = mb * p3 / sci + ss;
-              const double N    = 1.0 + a * mb * std::pow(base, a - 1.0);
-              const double q0   = p3 + sci * std::pow(base, a) - N * p3;
-              const double sphi = (N - 1.0) / (N + 1.0), cphi = std::sqrt(1.0 - sphi * sphi);
-              const double c    = q0 * (1.0 - sphi) / (2.0 * cphi);
-              Principal    t    = s_trial;
-              return_mohr_coulomb(t, c, sphi, cphi, prm.sin_psi, prm);
-              const bool done = (t - r).cwiseAbs().maxCoeff() <= 1e-13 * sci;
-              r               = t;
-              if (done)
-                break;
-            }
-          s = r;
+          pl = true;
+          if (!return_hoek_brown_newton(s, sci, mb, a, ss, prm))
+            return_hoek_brown_tangent_planes(s, sci, mb, a, ss, prm);
         }
       pl = return_rankine(s, st, prm) || pl;
       return pl;
