@@ -1,6 +1,7 @@
 #include <app/case_file.h>
 #include <app/cli.h>
 #include <diagnose/text_input.h>
+#include <diagnose/calibrate.h>
 #include <diagnose/csv.h>
 #include <diagnose/material_table.h>
 #include <app/output_writer.h>
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -264,15 +266,21 @@ namespace app
       StudyReference r;
       const double c = p.rock.cohesion, phi = p.rock.friction_angle * 180.0 / pi; // [deg]
       const double s = std::sin(phi * pi / 180.0), k = std::cos(phi * pi / 180.0);
+      // a Hoek-Brown rock's own envelope (intact, s = 1): sigma_ci in uniaxial compression, the
+      // disc centre's state (3 t, -t) on it or on the cut-off, sigma1 at the confinement
+      std::optional<diagnose::HoekBrownStrength> hb;
+      if (p.rock.model == sph::RockModel::hoek_brown)
+        hb = diagnose::HoekBrownStrength{p.rock.hb_sigma_ci, p.rock.hb_mb, p.rock.hb_a, p.rock.tensile_strength};
       if (p.test == "BTS")
       {
-        r.envelope    = 2 * c * k / (1 + s);
+        r.envelope    = hb ? diagnose::hoek_brown_disc_strength(*hb) : 2 * c * k / (1 + s);
         r.measured    = group ? group->bts : r.envelope;
         r.description = group ? "Table 3 BTS" : "Eq. 15 of the c, phi in use";
       }
       else if (p.test == "CTCS")
       {
-        r.envelope = mohr_coulomb_axial_strength(c, phi, p.confining_pressure);
+        r.envelope = hb ? diagnose::hoek_brown_sigma1(*hb, p.confining_pressure)
+                        : mohr_coulomb_axial_strength(c, phi, p.confining_pressure);
         if (group && group->measured_cohesion && group->measured_friction_angle)
         {
           r.measured = mohr_coulomb_axial_strength(
@@ -287,7 +295,7 @@ namespace app
       }
       else
       {
-        r.envelope    = mohr_coulomb_axial_strength(c, phi, 0.0);
+        r.envelope    = hb ? hb->sigma_ci : mohr_coulomb_axial_strength(c, phi, 0.0);
         r.measured    = group ? group->ucs : r.envelope;
         r.description = group ? "Table 3 UCS" : "Eq. 14 of the c, phi in use";
       }
@@ -510,7 +518,8 @@ namespace app
            "envelope\n"
            "              of Table 3's measured c, phi where the group has them, else of the c, "
            "phi in\n"
-           "              use), error_percent, envelope_MPa (closed form of the c, phi in use),\n"
+           "              use), error_percent, envelope_MPa (closed form of the c, phi in use;\n"
+           "              Hoek-Brown: its envelope's),\n"
            "              youngs_modulus_GPa, platen_modulus_GPa, poissons_ratio, strain_at_peak,\n"
            "              displacement_at_peak_mm, n_particles, n_steps, wall_seconds,\n"
            "              max_kinetic_to_internal_energy, max_force_imbalance, quasi_static,\n"

@@ -63,6 +63,11 @@ run() {
     bts-form)     study bts-form $bts --key "SPH/FORM" --values 0,1,7,8 ;;
     bts-cslh)     study bts-cslh $bts --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
     ucs-groups)   unpinned ucs-groups $ucs --groups all ;;
+    # the cases' Hoek-Brown rock (the simulator's m_b or cut-off), the CTCS case's, in UCS and BTS
+    bts-groups-hb) unpinned bts-groups-hb $disc --set "Rock/Model=hoek-brown" --groups all ;;
+    bts-groups-1mm-hb) unpinned bts-groups-1mm-hb $disc --set "Rock/Model=hoek-brown" \
+                    --set "SPH/Particle spacing=0.001" --groups M1,M4,M7,M10 ;;
+    ucs-groups-hb) unpinned ucs-groups-hb $ucs --set "Rock/Model=hoek-brown" --groups all ;;
     # the paper's 1 mm (197,600 particles): 20-40 min per group on this machine
     ucs-groups-1mm) study ucs-groups-1mm $ucs --set "SPH/Particle spacing=0.001" --groups all ;;
     ucs-loaded-face) study ucs-loaded-face $ucs --key "SPH/Loaded face correction" --values false,true ;;
@@ -226,7 +231,7 @@ run() {
   esac
 }
 
-all=(bts-groups bts-groups-1mm bts-rate bts-spacing bts-tssfac bts-form bts-cslh
+all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts-rate bts-spacing bts-tssfac bts-form bts-cslh
      ucs-groups ucs-loaded-face ucs-spacing ucs-rate ucs-tssfac ucs-form ucs-cslh ctcs
      platens-ucs platens-ucs-bonded platens-ucs-fitted platens-ucs-fitted-bonded platens-bts platens-bts-bonded basalt-bts-compliance
      bts-flattened-spacing platens-bts-flattened platens-bts-flattened-bonded
