@@ -11,15 +11,18 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
 cosim="${COSIM:-build/bin/cosim}"
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}" # shared machine: do not spin at barriers
-# the default cases: the BTS one is the flattened body-fitted disc, the rock of UCS and BTS has the
-# c, phi with which the simulator reproduces Table 3 (Rock/Strength parameters = simulated), the
-# CTCS one is M8's Hoek-Brown envelope with the simulator's cut-off
+# the default cases: the BTS one is the flattened body-fitted disc, the rock of every case is the
+# Hoek-Brown envelope with which the simulator reproduces Table 3 (Rock/Strength parameters =
+# simulated)
 disc=cases/bts/bts.prm
 # the studies stored before those became the defaults ran the round lattice disc and Mohr-Coulomb
 # with Table 4's c, phi: they keep them (`pin` goes in front of each study's own keys; the groups
 # studies clear it)
 bts=cases/bts/bts-round.prm
 pin=(--set "Rock/Model=mohr-coulomb" --set "Rock/Strength parameters=calibrated")
+# the groups studies of the Mohr-Coulomb rock with the simulator's c, phi (the UCS and BTS cases'
+# default before their Hoek-Brown rock)
+mc=(--set "Rock/Model=mohr-coulomb")
 flat=cases/bts/bts-flattened.prm
 ucs=cases/ucs/ucs.prm
 ctcs=cases/ctcs/ctcs.prm
@@ -49,8 +52,8 @@ unpinned() { # the same with the cases' own rock (no pin)
 
 run() {
   case $1 in
-    bts-groups)   unpinned bts-groups $disc --groups all ;;
-    bts-groups-1mm) unpinned bts-groups-1mm $disc --set "SPH/Particle spacing=0.001" --groups M1,M4,M7,M10 ;;
+    bts-groups)   unpinned bts-groups $disc "${mc[@]}" --groups all ;;
+    bts-groups-1mm) unpinned bts-groups-1mm $disc "${mc[@]}" --set "SPH/Particle spacing=0.001" --groups M1,M4,M7,M10 ;;
     bts-rate)     study bts-rate $bts --key "Loading/Strain rate" --values 0.25,0.5,1,2,5,10,20 ;;
     # the 25 mm disc allows at most 2.5 mm (10 particles through the thickness): Table 1's 50 mm
     # discs. 50/12 and 50/15 mm stand in for 4 and 3 mm, which do not divide 50 mm (they started
@@ -62,8 +65,8 @@ run() {
     bts-tssfac)   study bts-tssfac $bts --key "SPH/TSSFAC" --values 0.7,0.8,0.9 ;;
     bts-form)     study bts-form $bts --key "SPH/FORM" --values 0,1,7,8 ;;
     bts-cslh)     study bts-cslh $bts --key "SPH/CSLH" --values 1.05,1.2,1.3 ;;
-    ucs-groups)   unpinned ucs-groups $ucs --groups all ;;
-    # the cases' Hoek-Brown rock (the simulator's m_b or cut-off), the CTCS case's, in UCS and BTS
+    ucs-groups)   unpinned ucs-groups $ucs "${mc[@]}" --groups all ;;
+    # the cases' Hoek-Brown rock (the simulator's m_b or cut-off, the default of every case)
     bts-groups-hb) unpinned bts-groups-hb $disc --set "Rock/Model=hoek-brown" --groups all ;;
     bts-groups-1mm-hb) unpinned bts-groups-1mm-hb $disc --set "Rock/Model=hoek-brown" \
                     --set "SPH/Particle spacing=0.001" --groups M1,M4,M7,M10 ;;

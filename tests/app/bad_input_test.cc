@@ -164,7 +164,7 @@ TEST(BadInput, MeasuredStrengthOfAGroupWithout)
 TEST(BadInput, EnvelopeNeedsHoekBrownAndFitsItsOwnMi)
 {
   Sandbox box;
-  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Strength parameters=envelope"},
+  expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Strength parameters=envelope"},
                    {"Rock/Strength parameters", "Rock/Model = hoek-brown"});
   expect_bad_input(box, {"run", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=envelope", "--set", "Rock/Hoek-Brown mi=20"},
@@ -178,33 +178,33 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
   Sandbox box;
   const std::string bts_case = source("cases/bts/bts.prm");
   expect_bad_input(box, {"calibrate", "--simulate", bts_case}, {"Test/Type = BTS", "runs a UCS case"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=elastic"},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Model=elastic"},
                    {"mohr-coulomb or mohr-coulomb-cutoff"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--seeds", "0"}, {"--seeds", "[1, 100]"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--check", ucs_case},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--seeds", "0"}, {"--seeds", "[1, 100]"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--check", ucs_case},
                    {"--check, --with-bts, --cutoff-from and --mb-from run a BTS case"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--sets", "x"}, {"unknown option '--sets'", "--set"});
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--sets", "x"}, {"unknown option '--sets'", "--set"});
   expect_bad_input(box, {"calibrate", "--simulate", (box.dir() / "missing.prm").string()}, {"missing.prm"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Scatter length=0.005"},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Scatter length=0.005"},
                    {"Rock/Scatter length", "Rock/Strength scatter > 0"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--bts", "15"},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--bts", "15"},
                    {"--bts is the target of --with-bts, --cutoff-from or --mb-from"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", bts_case, "--check", bts_case},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--with-bts", bts_case, "--check", bts_case},
                    {"--check is for the UCS-only calibration"});
   // --cutoff-from scales a Hoek-Brown envelope's cut-off: not a Mohr-Coulomb rock's, not with the
   // other disc options
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--cutoff-from", bts_case},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--cutoff-from", bts_case},
                    {"--cutoff-from", "Rock/Model = hoek-brown"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=calibrated", "--cutoff-from", bts_case},
                    {"--cutoff-from", "Rock/Tensile strength > 0"});
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=envelope", "--set", "Rock/Group=M10", "--cutoff-from", bts_case,
                          "--with-bts", bts_case},
                    {"--cutoff-from and --mb-from each calibrate on their own BTS case"});
   // --mb-from divides the m_b of an envelope of a = 1/2 (no triaxial data): M10's envelope has a
   // fitted to its triaxial rows
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=envelope", "--set", "Rock/Group=M10", "--mb-from", bts_case},
                    {"--mb-from", "a = 0.74", "--cutoff-from for a fitted envelope"});
   // the two cases must be one rock: the BTS case with one more Rock key
@@ -215,11 +215,11 @@ TEST(BadInput, SimulatedCalibrationNeedsAMohrCoulombUcsCase)
     return path;
   };
   const fs::path other = disc_with("other.prm", "Group = M2"); // another group
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--with-bts", other.string()},
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--with-bts", other.string()},
                    {"other.prm", "differs from the UCS case's", "one rock"});
   // and for --cutoff-from one Hoek-Brown envelope: a disc with another m_i
   const fs::path other_envelope = disc_with("other_envelope.prm", "Hoek-Brown mi = 20");
-  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=hoek-brown", "--set",
+  expect_bad_input(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--set", "Rock/Model=hoek-brown", "--set",
                          "Rock/Strength parameters=calibrated", "--set", "Rock/Tensile strength=10e6",
                          "--cutoff-from", other_envelope.string()},
                    {"other_envelope.prm", "the Hoek-Brown envelope", "one rock"});
@@ -480,7 +480,7 @@ TEST(Calibrate, CommandPrintsTable4)
 TEST(Calibrate, SimulatedCalibrationOfAHomogeneousRockIsTheClosedFormScale)
 {
   Sandbox box;
-  const Result r = run_cosim(box, {"calibrate", "--simulate", ucs_case, "--ucs", "250", "--csv", "--set",
+  const Result r = run_cosim(box, {"calibrate", "--simulate", ucs_case, "--set", "Rock/Model=mohr-coulomb", "--ucs", "250", "--csv", "--set",
                                    "SPH/Particle spacing=0.005", "--set", "Loading/End strain=0.006"});
   ASSERT_EQ(r.status, 0) << r.err;
   const auto at = r.out.find("strength scale ");
@@ -503,7 +503,11 @@ TEST(Calibrate, JointSimulatedCalibrationRecoversTheRockThatMadeItsTargets)
   const fs::path ucs = box.dir() / "ucs5.prm";
   fs::copy_file(ucs_case, ucs);
   replace_in_file(ucs, "set Particle spacing = 0.0025", "set Particle spacing = 0.005");
-  const std::string bts = source("cases/bts/bts.prm");
+  const fs::path bts_mc = box.dir() / "bts.prm";
+  fs::copy_file(source("cases/bts/bts.prm"), bts_mc);
+  for (const fs::path &f : {ucs, bts_mc})
+    replace_in_file(f, "set Model               = hoek-brown", "set Model               = mohr-coulomb");
+  const std::string bts = bts_mc.string();
   const std::vector<std::string> rock{"--set", "Rock/Cohesion=38e6", "--set", "Rock/Friction angle=61"};
   auto peak = [&](const std::string &c, const std::string &out) {
     std::vector<std::string> args{"run", c, "-o", (box.dir() / out).string(), "--quiet"};

@@ -59,9 +59,15 @@ TEST(CaseFile, UcsCaseReadsTheGroupFromItsTables)
   EXPECT_EQ(p.rock_case.group, "M1");
   expect_close(p.rock.youngs_modulus, 97.07e9); // Table 3
   expect_close(p.rock.poissons_ratio, 0.28);
-  expect_close(p.rock.cohesion, 36.992e6); // simulator_calibrated.csv (Table 4: 32.99 MPa)
-  expect_close(p.rock.friction_angle, radians(60.548)); // stored in radians
-  const auto t4 = app::read_case_file(source("cases/ucs/ucs.prm"), {"Rock/Strength parameters=calibrated"});
+  // the case's rock: Hoek-Brown, the simulator's envelope (simulator_calibrated.csv: M1's m_b)
+  EXPECT_EQ(p.rock.model, sph::RockModel::hoek_brown);
+  expect_close(p.rock.hb_mb, 16.4277);
+  // Mohr-Coulomb: the simulator's c, phi (Table 4: 32.99 MPa)
+  const auto mc = app::read_case_file(source("cases/ucs/ucs.prm"), {"Rock/Model=mohr-coulomb"}).parameters;
+  expect_close(mc.rock.cohesion, 36.992e6);
+  expect_close(mc.rock.friction_angle, radians(60.548)); // stored in radians
+  const auto t4 = app::read_case_file(source("cases/ucs/ucs.prm"),
+                                      {"Rock/Model=mohr-coulomb", "Rock/Strength parameters=calibrated"});
   expect_close(t4.parameters.rock.cohesion, 32.99e6); // Table 4
   expect_close(t4.parameters.rock.friction_angle, radians(63.68));
   expect_close(p.rock_case.ucs, 282.18e6);
@@ -80,12 +86,12 @@ TEST(CaseFile, UcsCaseReadsTheGroupFromItsTables)
 
 TEST(CaseFile, BtsAndCtcsCasesRead)
 {
-  const auto b = app::read_case_file(source("cases/bts/bts.prm"), {}).parameters;
+  const auto b = app::read_case_file(source("cases/bts/bts.prm"), {"Rock/Model=mohr-coulomb"}).parameters;
   EXPECT_EQ(b.test, "BTS");
   EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
-  // the default disc: the flattened body-fitted one at 2.5 mm (converged there) with the c, phi
-  // the simulator needs for Table 3 (simulator_calibrated.csv, M1)
+  // the default disc: the flattened body-fitted one at 2.5 mm (converged there); its Mohr-Coulomb
+  // rock has the c, phi the simulator needs for Table 3 (simulator_calibrated.csv, M1)
   EXPECT_EQ(b.particle_arrangement, sph::ParticleArrangement::body_fitted);
   expect_close(b.flat_angle, 20 * 3.14159265358979323846 / 180);
   expect_close(b.sph.spacing, 0.0025);
@@ -180,8 +186,8 @@ TEST(CaseFile, MeasuredStrengthUsesTable3)
 
 TEST(CaseFile, ExplicitKeysOverrideTheGroupAndLaterSetWins)
 {
-  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"),
-                                          {"Rock/Youngs modulus=50e9", "Rock/Group=M4", "SPH/FORM=1", "SPH/FORM=7"});
+  const auto c = app::read_case_file(source("cases/ucs/ucs.prm"), {"Rock/Model=mohr-coulomb", "Rock/Youngs modulus=50e9",
+                                                                   "Rock/Group=M4", "SPH/FORM=1", "SPH/FORM=7"});
   expect_close(c.parameters.rock.youngs_modulus, 50e9);
   expect_close(c.parameters.rock.poissons_ratio, 0.25); // M4
   expect_close(c.parameters.rock.cohesion, 23.992e6); // M4, simulator_calibrated.csv
@@ -304,7 +310,7 @@ TEST(CaseFile, ErrorsAreInputErrors)
 TEST(CaseFile, AnglesAreWrittenInDegreesAndStoredInRadians)
 {
   const auto p = app::read_case_file(source("cases/ucs/ucs.prm"),
-                                     {"Rock/Friction angle=50", "Rock/Dilation angle=10",
+                                     {"Rock/Model=mohr-coulomb", "Rock/Friction angle=50", "Rock/Dilation angle=10",
                                       "Rock/Residual friction angle=30"})
                    .parameters;
   expect_close(p.rock.friction_angle, radians(50));
