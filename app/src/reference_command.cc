@@ -231,7 +231,8 @@ namespace app
     if (p.rock.model == sph::RockModel::hoek_brown)
       throw InputError("cosim reference: " + diagnose::clip(o.case_file) +
                        ": Rock/Model = hoek-brown; the reference models elastic, mohr-coulomb and "
-                       "mohr-coulomb-cutoff");
+                       "mohr-coulomb-cutoff (--set \"Rock/Model=mohr-coulomb\": the group's "
+                       "simulated c, phi)");
     if (!o.platens_given)
       o.reference.platens = p.platens.steel.model == fem::SteelModel::elastic
                               ? coupling::ReferencePlatens::elastic
