@@ -777,10 +777,10 @@ namespace sph::rock
   }
 
   /// Hoek-Brown f = (s0 - s2) - sigma_ci (-m_b s0 / sigma_ci + s)^a (tension +), dilation psi as
-  /// the potential, tension cut-off at s sigma_ci / m_b. On the envelope's faces and edges the return
-  /// is Newton's (return_hoek_brown_newton); where that does not apply (beyond the tensile apex)
-  /// by successive tangent Mohr-Coulomb planes (converged to 1e-13 sigma_ci). Softening scales s (and the
-  /// cut-off) by the strength factor.
+  /// the potential, tension cut-off at s sigma_ci / m_b. On the envelope's faces and edges the
+  /// return is Newton's (return_hoek_brown_newton); where that does not apply (beyond the tensile
+  /// apex) by successive tangent Mohr-Coulomb planes (converged to 1e-13 sigma_ci). Softening
+  /// scales s (and the cut-off) by the strength factor.
   inline StressUpdate update_hoek_brown(const Tensor3 &stress_old, const Tensor3 &strain_increment,
                                         const MaterialState &old_state, const ModelConstants &prm)
   {
