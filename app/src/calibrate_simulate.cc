@@ -160,7 +160,8 @@ namespace app
       if (p.rock.model != sph::RockModel::mohr_coulomb && p.rock.model != sph::RockModel::mohr_coulomb_cutoff)
         throw InputError("cosim calibrate --simulate: " + file +
                          ": calibrates the cohesion (and tension cut-off) of Rock/Model = mohr-coulomb or "
-                         "mohr-coulomb-cutoff");
+                         "mohr-coulomb-cutoff (--set \"Rock/Model=mohr-coulomb\"); a Hoek-Brown envelope's "
+                         "cut-off or m_b: --cutoff-from or --mb-from");
       return p;
     }
 
