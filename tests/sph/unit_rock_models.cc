@@ -244,6 +244,60 @@ namespace
       }
   }
 
+  // The invariant bound never calls a stress outside the envelope or above the cut-off
+  // admissible (checked on the principal stresses), and it does call most stresses admissible
+  // that lie well inside (a test that always said no would pass the first check).
+  TEST(SphHoekBrown, SurelyElasticOnlyInsideTheEnvelope)
+  {
+    MaterialParameters m;
+    m.model             = RockModel::hoek_brown;
+    m.youngs_modulus    = 60e9;
+    m.poissons_ratio    = 0.25;
+    m.hb_sigma_ci       = 150e6;
+    m.hb_mb             = 12;
+    m.hb_a              = 0.62;
+    m.tensile_strength  = 8e6;
+    m.softening_strain  = 1e-3;
+    m.residual_fraction = 0.2;
+    const ModelConstants p = make_model_constants(m);
+    unsigned             seed = 777;
+    const auto           uniform = [&seed]() {
+      seed = seed * 1103515245u + 12345u;
+      return ((seed >> 8) & 0xffff) / 65535.0;
+    };
+    int said = 0, deep_inside = 0, deep_said = 0;
+    for (int k = 0; k < 20000; ++k)
+      {
+        const double scale = 300e6 * uniform() * uniform();
+        Tensor3      t;
+        for (int r = 0; r < 3; ++r)
+          for (int c = r; c < 3; ++c)
+            t(r, c) = t(c, r) = scale * (2 * uniform() - 1) - (r == c ? 0.5 * scale * uniform() : 0.0);
+        const double    damage = k % 2 == 0 ? 0.0 : 0.5, strength = 0.8 + 0.4 * uniform();
+        const double    ss     = strength * strength_factor(damage, p);
+        const double    st     = std::min(p.tensile_strength * ss, ss * 150e6 / 12);
+        const Principal s      = principal(t);
+        const double    base   = -12 * s[0] / 150e6 + ss;
+        const double    f      = base > 0 ? (s[0] - s[2]) - 150e6 * std::pow(base, 0.62) : 1.0;
+        const bool      inside = f <= 0 && s[0] <= st;
+        const bool      sure   = hoek_brown_surely_elastic(t, strength, damage, p);
+        if (sure)
+          {
+            ++said;
+            EXPECT_TRUE(inside) << "trial " << s.transpose() << " called admissible, f " << f;
+          }
+        // well inside: half the strength and below half the cut-off
+        if (base > 0 && (s[0] - s[2]) < 0.5 * 150e6 * std::pow(base, 0.62) && s[0] < 0.5 * st &&
+            std::abs(s[0]) + std::abs(s[2]) < 0.2 * 150e6)
+          {
+            ++deep_inside;
+            deep_said += sure;
+          }
+      }
+    EXPECT_GT(said, 500);
+    EXPECT_GT(deep_said, 0.5 * deep_inside) << deep_said << " of " << deep_inside;
+  }
+
   // Newton's return (faces and edges) against the successive tangent planes, an independent
   // algorithm for the same closest point: random trials around the envelope of two a's and two
   // dilation angles, near the edges s0 = s1 (uniaxial and triaxial compression) and s1 = s2

@@ -638,6 +638,36 @@ namespace sph::rock
     return a == 0.5 ? std::sqrt(base) : std::pow(base, a);
   }
 
+  /// A sufficient test that the trial stress t lies inside the (softened) Hoek-Brown envelope and
+  /// below its tension cut-off, from the invariants alone (as mohr_coulomb_surely_elastic): with
+  /// the mean stress m and q = sqrt(J2), s0 <= s0max = m + 2 q / sqrt(3) and s0 - s2 <= 2 q, and
+  /// the envelope's strength sci (-mb s0 / sci + ss)^a falls as s0 grows, so
+  ///   f <= 2 q - sci (-mb s0max / sci + ss)^a.
+  /// Both that and s0max - cut-off below zero by a margin far above round-off: admissible.
+  inline bool hoek_brown_surely_elastic(const Tensor3 &t, const double strength, const double damage,
+                                        const ModelConstants &prm)
+  {
+    const double factor = strength * strength_factor(damage, prm);
+    const double sci = prm.hb_sigma_ci, mb = prm.hb_mb;
+    const double ss  = prm.hb_s * factor;
+    const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
+    const double m   = t.trace() / 3.0;
+    double       dd  = 0; // dev : dev = 2 J2
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        {
+          const double d = t(r, c) - (r == c ? m : 0.0);
+          dd += d * d;
+        }
+    const double q      = std::sqrt(0.5 * dd);
+    const double s0max  = m + 2.0 / std::sqrt(3.0) * q;
+    const double margin = 1e-9 * (std::abs(m) + q + sci);
+    if (!(s0max < st - margin))
+      return false;
+    const double base = -mb * s0max / sci + ss;
+    return base > 0 && 2.0 * q < sci * hoek_brown_power(base, prm.hb_a) - margin;
+  }
+
   /// The return of sorted principal stresses s onto the Hoek-Brown envelope
   /// F(x, z) = (x - z) - sci (-mb x / sci + ss)^a <= 0 for every pair x >= z of them, by Newton's
   /// method on the plastic multipliers, flow along D b with b = (1 + sin psi, 0, -(1 - sin psi))
@@ -803,8 +833,10 @@ namespace sph::rock
       pl = return_rankine(s, st, prm) || pl;
       return pl;
     };
-    // no cheap test: the principal stresses decide
-    const auto surely_elastic = [](const Tensor3 &, double, double) { return false; };
+    const auto surely_elastic = [&prm](const Tensor3 &t, const double strength,
+                                       const double damage) {
+      return hoek_brown_surely_elastic(t, strength, damage, prm);
+    };
     // the friction angle of the envelope's tangent at s0: sin = (N - 1) / (N + 1), N the slope
     // d sigma_1 / d sigma_3 (compression +); beyond the tensile apex, tensile
     const auto classify = [&prm](const Principal &s, const double strength, const double damage) {
@@ -854,9 +886,9 @@ namespace sph::rock
     {
       return update_hoek_brown(s, de, h, p);
     }
-    bool surely_elastic(const Tensor3 &, const MaterialState &, const ModelConstants &) const
+    bool surely_elastic(const Tensor3 &t, const MaterialState &h, const ModelConstants &p) const
     {
-      return false; // no cheap test: the principal stresses decide
+      return hoek_brown_surely_elastic(t, h.strength, h.damage, p);
     }
   };
   using Model = std::variant<Elastic, MohrCoulomb, HoekBrown>;
