@@ -223,7 +223,7 @@ namespace app
     /// target / peak), the later ones a secant in log k, log peak through the last two (slope
     /// kept within [0.2, 2]: the peak grows less than in proportion when a heterogeneous rock's
     /// fixed fracture energy makes the stronger rock more brittle). Prints a row per run: the
-    /// scaled value `base` k [MPa] under `value_column`, the mean peak under `peak_column` with
+    /// scaled value `base` k [MPa] (or `value(k)` where given) under `value_column`, the mean peak under `peak_column` with
     /// `peak_digits` decimals. k is the last scale run, not the next guess.
     struct ScaleFit
     {
@@ -323,90 +323,103 @@ namespace app
       return 0;
     }
 
-    /// --cutoff-from: a Hoek-Brown rock's tension cut-off alone, scaled until the simulated BTS
-    /// of the disc case is the measured one (the envelope, which sets the UCS and the triaxial
-    /// strengths, is not touched), by fit_scale as the UCS-only calibration. The
-    /// UCS case runs once at the end, a check that the cut-off leaves the UCS where it was.
-    int cutoff_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
-                           const double ucs_target)
+    /// One strength of a Hoek-Brown rock scaled by k (fit_scale) until the simulated BTS of the
+    /// disc case is the measured one; then the UCS case runs once with it as a check.
+    struct DiscScale
     {
-      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
-      if (!(bts_target > 0))
-        throw InputError("cosim calibrate --cutoff-from: the case's group has no BTS; give --bts MPa");
-      if (!(bts_case.rock.tensile_strength > 0))
-        throw InputError("cosim calibrate --cutoff-from: " + o.cutoff_file +
-                         ": calibrates the tension cut-off of Rock/Model = hoek-brown (Rock/Tensile strength > 0, "
-                         "as Rock/Strength parameters = envelope sets it)");
-      const auto at = [](CaseParameters p, const double k) {
-        p.rock.tensile_strength *= k;
-        return p;
-      };
-      const ScaleFit fit = fit_scale(o, "cutoff_MPa", "mean_BTS_MPa", 4, bts_case.rock.tensile_strength, bts_target,
-                                     [&](const double k) {
-                                       return sample(at(bts_case, k), o.seeds,
-                                                     "BTS at cut-off scale " + std::to_string(k));
-                                     });
-      const Sample &b      = fit.sample;
-      const double  cutoff = bts_case.rock.tensile_strength * fit.k;
-      const Sample  u      = sample(at(ucs_case, fit.k), o.seeds, "check UCS");
+      const char *option; ///< "--cutoff-from"
+      const char *column;                                      ///< the scaled value's column
+      std::function<double(double)> value;                     ///< its value at scale k
+      std::function<CaseParameters(CaseParameters, double)> at; ///< the rock at scale k
+      std::function<void(double)> report;                      ///< the result line(s) at scale k
+    };
+    int disc_scale_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
+                               const double ucs_target, const double bts_target, const DiscScale &d)
+    {
+      const ScaleFit fit = fit_scale(
+        o, d.column, "mean_BTS_MPa", 4, 0.0, bts_target,
+        [&](const double k) {
+          return sample(d.at(bts_case, k), o.seeds, std::string("BTS at ") + d.column + " " + std::to_string(d.value(k)));
+        },
+        d.value);
+      const Sample &b = fit.sample;
+      const Sample  u = sample(d.at(ucs_case, fit.k), o.seeds, "check UCS");
       std::printf("\ntarget BTS %.2f MPa: simulated %.2f MPa (%+.2f %%); check UCS %.2f MPa against %.2f MPa "
                   "(%+.2f %%)\n",
                   bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), u.mean * 1e-6,
                   ucs_target * 1e-6, 100 * (u.mean / ucs_target - 1));
-      std::printf("tension cut-off %.4f MPa (%.4f of the case's); run with:\n  --set \"Rock/Tensile strength=%.6g\"\n",
-                  cutoff * 1e-6, fit.k, cutoff);
+      d.report(fit.k);
       if (!fit.converged)
       {
-        std::fprintf(stderr, "cosim calibrate --cutoff-from: not converged to %.2f %% in 8 iterations\n",
+        std::fprintf(stderr, "cosim calibrate %s: not converged to %.2f %% in 8 iterations\n", d.option,
                      100 * o.tolerance);
         return 1;
       }
       return 0;
     }
 
+    /// The BTS a disc calibration aims at: --bts, else the case's group's.
+    double disc_target(const Options &o, const CaseParameters &bts_case, const char *option)
+    {
+      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
+      if (!(bts_target > 0))
+        throw InputError(std::string("cosim calibrate ") + option + ": the case's group has no BTS; give --bts MPa");
+      return bts_target;
+    }
+
+    /// --cutoff-from: a Hoek-Brown rock's tension cut-off alone, scaled until the simulated BTS
+    /// of the disc case is the measured one (the envelope, which sets the UCS and the triaxial
+    /// strengths, is not touched).
+    int cutoff_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
+                           const double ucs_target)
+    {
+      const double bts_target = disc_target(o, bts_case, "--cutoff-from");
+      const double cutoff0    = bts_case.rock.tensile_strength;
+      if (!(cutoff0 > 0))
+        throw InputError("cosim calibrate --cutoff-from: " + o.cutoff_file +
+                         ": calibrates the tension cut-off of Rock/Model = hoek-brown (Rock/Tensile strength > 0, "
+                         "as Rock/Strength parameters = envelope sets it)");
+      DiscScale d{"--cutoff-from", "cutoff_MPa", [cutoff0](const double k) { return cutoff0 * k * 1e-6; },
+                  [](CaseParameters p, const double k) {
+                    p.rock.tensile_strength *= k;
+                    return p;
+                  },
+                  [cutoff0](const double k) {
+                    std::printf("tension cut-off %.4f MPa (%.4f of the case's); run with:\n"
+                                "  --set \"Rock/Tensile strength=%.6g\"\n",
+                                cutoff0 * k * 1e-6, k, cutoff0 * k);
+                  }};
+      return disc_scale_calibration(o, ucs_case, bts_case, ucs_target, bts_target, d);
+    }
+
     /// --mb-from: a Hoek-Brown rock's m_b alone, for a group without triaxial data (a = 1/2 and
     /// m_b through the disc centre's closed-form state, as Rock/Strength parameters = envelope
     /// gives it): no tension cut-off but the envelope's own apex sigma_ci / m_b, m_b divided by k
     /// until the simulated BTS of the disc case is the measured one (a smaller m_b: a stronger
-    /// disc), by fit_scale. sigma_ci stays the UCS; the UCS case runs once at the end as a check.
+    /// disc). sigma_ci stays the UCS.
     int mb_calibration(const Options &o, const CaseParameters &ucs_case, const CaseParameters &bts_case,
                        const double ucs_target)
     {
-      const double bts_target = o.bts_target > 0 ? o.bts_target : bts_case.rock_case.bts;
-      if (!(bts_target > 0))
-        throw InputError("cosim calibrate --mb-from: the case's group has no BTS; give --bts MPa");
+      const double bts_target = disc_target(o, bts_case, "--mb-from");
       if (bts_case.rock.hb_a != 0.5)
         throw InputError("cosim calibrate --mb-from: " + o.mb_file + ": the envelope has a = " +
                          std::to_string(bts_case.rock.hb_a) +
                          ", fitted to triaxial data; --mb-from is for a = 1/2 (a group without triaxial data), "
                          "--cutoff-from for a fitted envelope");
-      const double mb0 = bts_case.rock.hb_mb;
-      const auto   at  = [mb0](CaseParameters p, const double k) {
-        p.rock.hb_mb            = mb0 / k;
-        p.rock.tensile_strength = 0;
-        return p;
-      };
-      const ScaleFit fit = fit_scale(
-        o, "m_b", "mean_BTS_MPa", 4, mb0, bts_target,
-        [&](const double k) { return sample(at(bts_case, k), o.seeds, "BTS at m_b " + std::to_string(mb0 / k)); },
-        [mb0](const double k) { return mb0 / k; });
-      const Sample &b  = fit.sample;
-      const double  mb = mb0 / fit.k;
-      const Sample  u  = sample(at(ucs_case, fit.k), o.seeds, "check UCS");
-      std::printf("\ntarget BTS %.2f MPa: simulated %.2f MPa (%+.2f %%); check UCS %.2f MPa against %.2f MPa "
-                  "(%+.2f %%)\n",
-                  bts_target * 1e-6, b.mean * 1e-6, 100 * (b.mean / bts_target - 1), u.mean * 1e-6,
-                  ucs_target * 1e-6, 100 * (u.mean / ucs_target - 1));
-      std::printf("m_b %.4f (the closed form's %.4f), no cut-off but the apex %.4f MPa; run with:\n"
-                  "  --set \"Rock/Hoek-Brown mi=%.6g\" --set \"Rock/Hoek-Brown a=0.5\" --set \"Rock/Tensile strength=0\"\n",
-                  mb, mb0, bts_case.rock.hb_sigma_ci / mb * 1e-6, mb);
-      if (!fit.converged)
-      {
-        std::fprintf(stderr, "cosim calibrate --mb-from: not converged to %.2f %% in 8 iterations\n",
-                     100 * o.tolerance);
-        return 1;
-      }
-      return 0;
+      const double mb0 = bts_case.rock.hb_mb, sci = bts_case.rock.hb_sigma_ci;
+      DiscScale d{"--mb-from", "m_b", [mb0](const double k) { return mb0 / k; },
+                  [mb0](CaseParameters p, const double k) {
+                    p.rock.hb_mb            = mb0 / k;
+                    p.rock.tensile_strength = 0;
+                    return p;
+                  },
+                  [mb0, sci](const double k) {
+                    std::printf("m_b %.4f (the closed form's %.4f), no cut-off but the apex %.4f MPa; run with:\n"
+                                "  --set \"Rock/Hoek-Brown mi=%.6g\" --set \"Rock/Hoek-Brown a=0.5\" --set "
+                                "\"Rock/Tensile strength=0\"\n",
+                                mb0 / k, mb0, sci / (mb0 / k) * 1e-6, mb0 / k);
+                  }};
+      return disc_scale_calibration(o, ucs_case, bts_case, ucs_target, bts_target, d);
     }
   } // namespace
 

@@ -242,9 +242,9 @@ namespace app::keys
                  "(cosim calibrate --simulate ... --mb-from finds one); or use envelope");
         o.hb_mi = *group.simulated_mb;
         if (!o.tensile_strength)
-          o.tensile_strength = 0.0;
+          o.tensile_strength = 0.0; // none: the apex s sigma_ci / m_b cuts off
       }
-      if (!o.tensile_strength && c.strength_source == "simulated")
+      else if (!o.tensile_strength && c.strength_source == "simulated")
       {
         // the cut-off with which this envelope gives the group's BTS in the simulator's disc
         if (!group.simulated_cutoff)

@@ -52,10 +52,10 @@ namespace sph
       return layer;
     }
 
-    /// The outer ring (the layer's last `n` = ring_points(k) points, at radius r) re-spaced so that each flat's arc
-    /// |theta| <= a (and |theta - pi| <= a) holds a whole number m of equal sectors: the odd m
-    /// (a particle stays on the loaded diameter) whose sectors are nearest in angle to those of
-    /// the round arcs between the flats, which share the rest equally. With the ring's even
+    /// The outer ring (the layer's last `n` = ring_points(k) points, at radius r) re-spaced so
+    /// that each flat's arc |theta| <= a (and |theta - pi| <= a) holds a whole number m of equal
+    /// sectors: the odd m (a particle stays on the loaded diameter) whose sectors are nearest in
+    /// angle to those of the round arcs between the flats, which share the rest equally. With the ring's even
     /// spacing the corner at a falls inside a sector, whose particle stays on the round arc just
     /// below the flat: at D/20 (2.5 mm) the flat's particles then covered 82 % of it, the platen
     /// loaded a narrower arc than the specimen's, the disc's tension reached too far towards the

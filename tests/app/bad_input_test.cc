@@ -581,6 +581,40 @@ TEST(Calibrate, CutoffCalibrationRecoversTheCutoffThatMadeItsTarget)
   EXPECT_NEAR(std::stod(r.out.substr(u + 10)) / 206.10, 1.0, 0.01) << r.out;
 }
 
+TEST(Calibrate, MbCalibrationRecoversTheMbThatMadeItsTarget)
+{
+  // M1's envelope of a = 1/2 with m_b 16 and no cut-off but its apex gives the default disc (the
+  // flattened body-fitted one at 2.5 mm) a BTS; with that as the target, --mb-from starts at the
+  // closed form's m_b 17.41 (Rock/Strength parameters = envelope) and must find 16 again. The UCS
+  // check runs the cylinder at 5 mm.
+  Sandbox box;
+  const fs::path ucs = box.dir() / "ucs5.prm";
+  fs::copy_file(ucs_case, ucs);
+  replace_in_file(ucs, "set Particle spacing = 0.0025", "set Particle spacing = 0.005");
+  const std::string bts = source("cases/bts/bts.prm");
+  const Result made = run_cosim(box, {"run", bts, "-o", (box.dir() / "b").string(), "--quiet", "--set",
+                                      "Rock/Strength parameters=calibrated", "--set", "Rock/Hoek-Brown mi=16", "--set",
+                                      "Rock/Hoek-Brown a=0.5", "--set", "Rock/Tensile strength=0"});
+  ASSERT_EQ(made.status, 0) << made.err;
+  const std::string summary = read_file(box.dir() / "b" / "summary.json");
+  const auto at             = summary.find("\"peak_stress_MPa\":");
+  ASSERT_NE(at, std::string::npos);
+  const double target = std::stod(summary.substr(at + 18));
+  const Result r = run_cosim(box, {"calibrate", "--simulate", ucs.string(), "--mb-from", bts, "--bts",
+                                   std::to_string(target), "--set", "Rock/Strength parameters=envelope"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = r.out.find("\nm_b ");
+  ASSERT_NE(m, std::string::npos) << r.out;
+  // the fit stops when the BTS is within 0.5 % (its tolerance); the disc's BTS moves as m_b to
+  // the power -0.9 (M1 at 1.25 mm: 14.65 / 15.34 MPa at m_b 17.41 / 16.53), so 0.56 % of m_b;
+  // 1.5 % holds it with the step's rounding
+  EXPECT_NEAR(std::stod(r.out.substr(m + 5)) / 16.0, 1.0, 0.015) << r.out;
+  // m_b leaves the UCS at sigma_ci: within 1 % of M1's 282.18 MPa
+  const auto u = r.out.find("check UCS ");
+  ASSERT_NE(u, std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(u + 10)) / 282.18, 1.0, 0.01) << r.out;
+}
+
 // The output files of a real run: the default UCS case end to end (coarse spacing to stay quick).
 TEST(AppRun, DefaultUcsWritesEveryOutput)
 {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace
 {
@@ -177,7 +178,8 @@ namespace
     EXPECT_EQ(friction_at(0.0, p).cos_phi, p.cos_phi);
   }
 
-  TEST(SphHoekBrown, ReturnLandsOnEnvelope)
+  /// Intact Hoek-Brown rock of the tests below: sigma_ci 150 MPa, m_b 12, s 1, exponent a.
+  MaterialParameters hoek_brown_rock(const double a)
   {
     MaterialParameters m;
     m.model          = RockModel::hoek_brown;
@@ -186,8 +188,22 @@ namespace
     m.hb_sigma_ci    = 150e6;
     m.hb_mb          = 12;
     m.hb_s           = 1;
-    m.hb_a           = 0.5;
-    const ModelConstants p = make_model_constants(m);
+    m.hb_a           = a;
+    return m;
+  }
+
+  /// A reproducible stream of numbers uniform in [0, 1).
+  struct Uniform
+  {
+    std::mt19937                           rng;
+    std::uniform_real_distribution<double> u{0.0, 1.0};
+    explicit Uniform(const unsigned seed) : rng(seed) {}
+    double operator()() { return u(rng); }
+  };
+
+  TEST(SphHoekBrown, ReturnLandsOnEnvelope)
+  {
+    const ModelConstants p = make_model_constants(hoek_brown_rock(0.5));
     const auto up = update_hoek_brown(Tensor3::Zero(), strain_for({-20e6, -25e6, -400e6}, p),
                                       MaterialState(), p);
     const Principal s = principal(up.stress);
@@ -206,15 +222,9 @@ namespace
   // (1e-8 of sigma_ci: the returns converge to 1e-13), and the damage grows to 1.
   TEST(SphHoekBrown, SofteningStatesLieOnTheirDamagesEnvelope)
   {
-    MaterialParameters m;
-    m.model             = RockModel::hoek_brown;
-    m.youngs_modulus    = 60e9;
-    m.poissons_ratio    = 0.25;
-    m.hb_sigma_ci       = 150e6;
-    m.hb_mb             = 12;
-    m.hb_a              = 0.5;
-    m.softening_strain  = 1e-3;
-    m.residual_fraction = 0.2;
+    MaterialParameters m = hoek_brown_rock(0.5);
+    m.softening_strain    = 1e-3;
+    m.residual_fraction   = 0.2;
     const ModelConstants p = make_model_constants(m);
     for (const Principal &path : {Principal(0, 0, -20e6), Principal(-3e6, -20e6, -20e6)})
       {
@@ -249,22 +259,12 @@ namespace
   // that lie well inside (a test that always said no would pass the first check).
   TEST(SphHoekBrown, SurelyElasticOnlyInsideTheEnvelope)
   {
-    MaterialParameters m;
-    m.model             = RockModel::hoek_brown;
-    m.youngs_modulus    = 60e9;
-    m.poissons_ratio    = 0.25;
-    m.hb_sigma_ci       = 150e6;
-    m.hb_mb             = 12;
-    m.hb_a              = 0.62;
-    m.tensile_strength  = 8e6;
-    m.softening_strain  = 1e-3;
-    m.residual_fraction = 0.2;
+    MaterialParameters m = hoek_brown_rock(0.62);
+    m.tensile_strength    = 8e6;
+    m.softening_strain    = 1e-3;
+    m.residual_fraction   = 0.2;
     const ModelConstants p = make_model_constants(m);
-    unsigned             seed = 777;
-    const auto           uniform = [&seed]() {
-      seed = seed * 1103515245u + 12345u;
-      return ((seed >> 8) & 0xffff) / 65535.0;
-    };
+    Uniform              uniform(777);
     int said = 0, deep_inside = 0, deep_said = 0;
     for (int k = 0; k < 20000; ++k)
       {
@@ -307,21 +307,11 @@ namespace
     for (const double a : {0.5, 0.62})
       for (const double psi_deg : {0.0, 20.0})
         {
-          MaterialParameters m;
-          m.model          = RockModel::hoek_brown;
-          m.youngs_modulus = 60e9;
-          m.poissons_ratio = 0.25;
-          m.hb_sigma_ci    = 150e6;
-          m.hb_mb          = 12;
-          m.hb_a           = a;
-          m.dilation_angle = psi_deg * M_PI / 180;
+          MaterialParameters m = hoek_brown_rock(a);
+          m.dilation_angle       = psi_deg * M_PI / 180;
           const ModelConstants p = make_model_constants(m);
           const double         sci = 150e6, apex = sci / 12;
-          unsigned             seed = 12345;
-          const auto uniform = [&seed]() {
-            seed = seed * 1103515245u + 12345u;
-            return ((seed >> 8) & 0xffff) / 65535.0;
-          };
+          Uniform              uniform(12345);
           int newton = 0, plastic = 0, edges = 0;
           for (int k = 0; k < 3000; ++k)
             {

@@ -561,6 +561,26 @@ namespace sph::rock
     return out;
   }
 
+  /// The mean stress m = tr(t) / 3 and q = sqrt(J2) of a stress, the invariants the surely-elastic
+  /// bounds use: the largest principal stress is at most m + 2 q / sqrt(3), the spread s0 - s2 at
+  /// most 2 q (the Lode angle within +-30 deg).
+  struct MeanAndShear
+  {
+    double m, q;
+  };
+  inline MeanAndShear mean_and_shear(const Tensor3 &t)
+  {
+    const double m  = t.trace() / 3.0;
+    double       dd = 0; // dev : dev = 2 J2
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        {
+          const double d = t(r, c) - (r == c ? m : 0.0);
+          dd += d * d;
+        }
+    return {m, std::sqrt(0.5 * dd)};
+  }
+
   /// A sufficient test that the trial stress t lies inside the (softened) Mohr-Coulomb surface
   /// and below the tension cut-off of a particle of strength factor `strength` at `damage`.
   /// Bounds from the invariants alone: with the mean stress m, q = sqrt(J2) and the deviatoric
@@ -572,17 +592,9 @@ namespace sph::rock
   inline bool mohr_coulomb_surely_elastic(const Tensor3 &t, const double strength,
                                           const double damage, const ModelConstants &prm)
   {
-    const double   factor = strength * strength_factor(damage, prm);
-    const Friction fr     = friction_at(damage, prm);
-    const double   m      = t.trace() / 3.0;
-    double         dd     = 0; // dev : dev = 2 J2
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        {
-          const double d = t(r, c) - (r == c ? m : 0.0);
-          dd += d * d;
-        }
-    const double q      = std::sqrt(0.5 * dd);
+    const double   factor  = strength * strength_factor(damage, prm);
+    const Friction fr      = friction_at(damage, prm);
+    const auto [m, q]      = mean_and_shear(t);
     const double c      = prm.cohesion * factor;
     const double margin = 1e-9 * (std::abs(m) + q + c);
     const double f_max  = 2.0 * m * fr.sin_phi +
@@ -638,6 +650,13 @@ namespace sph::rock
     return a == 0.5 ? std::sqrt(base) : std::pow(base, a);
   }
 
+  /// The tension cut-off of a Hoek-Brown rock at strength factor `factor`: the case's cut-off or
+  /// the envelope's tensile apex s sigma_ci / m_b, whichever is lower, both scaled [Pa].
+  inline double hoek_brown_cutoff(const ModelConstants &prm, const double factor)
+  {
+    return std::min(prm.tensile_strength * factor, prm.hb_s * factor * prm.hb_sigma_ci / prm.hb_mb);
+  }
+
   /// A sufficient test that the trial stress t lies inside the (softened) Hoek-Brown envelope and
   /// below its tension cut-off, from the invariants alone (as mohr_coulomb_surely_elastic): with
   /// the mean stress m and q = sqrt(J2), s0 <= s0max = m + 2 q / sqrt(3) and s0 - s2 <= 2 q, and
@@ -650,16 +669,8 @@ namespace sph::rock
     const double factor = strength * strength_factor(damage, prm);
     const double sci = prm.hb_sigma_ci, mb = prm.hb_mb;
     const double ss  = prm.hb_s * factor;
-    const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
-    const double m   = t.trace() / 3.0;
-    double       dd  = 0; // dev : dev = 2 J2
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        {
-          const double d = t(r, c) - (r == c ? m : 0.0);
-          dd += d * d;
-        }
-    const double q      = std::sqrt(0.5 * dd);
+    const double st  = hoek_brown_cutoff(prm, factor);
+    const auto [m, q]   = mean_and_shear(t);
     const double s0max  = m + 2.0 / std::sqrt(3.0) * q;
     const double margin = 1e-9 * (std::abs(m) + q + sci);
     if (!(s0max < st - margin))
@@ -818,7 +829,7 @@ namespace sph::rock
       const double factor = strength * strength_factor(damage, prm);
       const double sci = prm.hb_sigma_ci, mb = prm.hb_mb, a = prm.hb_a;
       const double ss  = prm.hb_s * factor;
-      const double st  = std::min(prm.tensile_strength * factor, ss * sci / mb);
+      const double st  = hoek_brown_cutoff(prm, factor);
       const auto   f   = [&](const Principal &t) {
         const double base = std::max(-mb * t[0] / sci + ss, 0.0);
         return (t[0] - t[2]) - sci * hoek_brown_power(base, a);
@@ -842,7 +853,7 @@ namespace sph::rock
     const auto classify = [&prm](const Principal &s, const double strength, const double damage) {
       const double factor = strength * strength_factor(damage, prm);
       const double ss     = prm.hb_s * factor;
-      const double st = std::min(prm.tensile_strength * factor, ss * prm.hb_sigma_ci / prm.hb_mb);
+      const double st = hoek_brown_cutoff(prm, factor);
       const double base = -prm.hb_mb * s[0] / prm.hb_sigma_ci + ss;
       if (!(base > 0))
         return FailureMode::tensile;
