@@ -171,10 +171,10 @@ namespace app
            "the\n"
            "rock cylinder between platens (deal.II, axisymmetric, small strain, Newton, "
            "displacement-\n"
-           "controlled increments). The rock is the case's, elastic or Mohr-Coulomb (with its "
+           "controlled increments). The rock is the case's, elastic, Mohr-Coulomb (with its "
            "dilation\n"
-           "angle and tension cut-off) with the SPH rock's return mapping, but perfectly plastic: "
-           "no\n"
+           "angle and tension cut-off) or Hoek-Brown, with the SPH rock's return mapping, but "
+           "perfectly plastic: no\n"
            "softening and no strength scatter. The platens are rigid or elastic steel "
            "(Platens/Youngs\n"
            "modulus, Poissons ratio, Thickness, Diameter; 0 = 1.2 x the specimen's diameter;\n"
@@ -189,7 +189,8 @@ namespace app
            "Writes into OUTDIR (default results/<case stem>-reference):\n"
            "  summary.json          peak stress and force, strain and platen displacement at the "
            "peak,\n"
-           "                        the Mohr-Coulomb closed form, mesh, Newton counts, wall time\n"
+           "                        the rock's uniaxial closed form (closed_form_ucs_MPa; Mohr-Coulomb's\n"
+           "                        also as mohr_coulomb_ucs_MPa), mesh, Newton counts, wall time\n"
            "  curve.csv             platen_displacement_mm, strain (specimen), radial_strain "
            "(mid-height),\n"
            "                        force_kN, stress_MPa (force / initial area), "
@@ -228,11 +229,6 @@ namespace app
     if (p.test != "UCS")
       throw InputError("cosim reference: " + diagnose::clip(o.case_file) +
                        ": Test/Type = " + p.test + "; the reference models the UCS cylinder only");
-    if (p.rock.model == sph::RockModel::hoek_brown)
-      throw InputError("cosim reference: " + diagnose::clip(o.case_file) +
-                       ": Rock/Model = hoek-brown; the reference models elastic, mohr-coulomb and "
-                       "mohr-coulomb-cutoff (--set \"Rock/Model=mohr-coulomb\": the group's "
-                       "simulated c, phi)");
     if (!o.platens_given)
       o.reference.platens = p.platens.steel.model == fem::SteelModel::elastic
                               ? coupling::ReferencePlatens::elastic
@@ -266,17 +262,23 @@ namespace app
     const coupling::ReferenceResult r = coupling::run_reference_cylinder(p, o.reference);
 
     using Json               = nlohmann::ordered_json;
-    const bool mohr_coulomb  = p.rock.model != sph::RockModel::elastic;
-    const double closed_form = coupling::mohr_coulomb_axial_strength(
-      p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
+    const bool plastic      = p.rock.model != sph::RockModel::elastic;
+    const bool hoek_brown   = p.rock.model == sph::RockModel::hoek_brown;
+    const bool mohr_coulomb = plastic && !hoek_brown;
+    // the rock's uniaxial strength: Mohr-Coulomb's 2c cos(phi) / (1 - sin(phi)), Hoek-Brown's
+    // sigma_ci s^a (a cut-off does not reach a compressive test)
+    const double closed_form =
+      hoek_brown ? p.rock.hb_sigma_ci * std::pow(p.rock.hb_s, p.rock.hb_a)
+                 : coupling::mohr_coulomb_axial_strength(
+                     p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
     Json s;
     s["test"]   = "UCS";
     s["solver"] = "reference: implicit axisymmetric FE (deal.II), perfectly plastic rock";
     s["group"]  = p.rock_case.group;
-    s["rock_model"] =
-      mohr_coulomb ? (p.rock.model == sph::RockModel::mohr_coulomb_cutoff ? "mohr-coulomb-cutoff"
-                                                                          : "mohr-coulomb")
-                   : "elastic";
+    s["rock_model"] = hoek_brown     ? "hoek-brown"
+                      : !plastic     ? "elastic"
+                      : p.rock.model == sph::RockModel::mohr_coulomb_cutoff ? "mohr-coulomb-cutoff"
+                                                                          : "mohr-coulomb";
     s["platens"] = o.reference.platens == coupling::ReferencePlatens::rigid ? "rigid" : "elastic";
     s["interface"] =
       o.reference.interface == coupling::ReferenceInterface::bonded ? "bonded" : "free-slip";
@@ -294,6 +296,7 @@ namespace app
     s["platen_displacement_at_peak_mm"] = rounded(r.displacement_at_peak * 1e3);
     s["half_peak_force_kN"]             = rounded(r.half_peak_force * 1e-3);
     s["mohr_coulomb_ucs_MPa"] = mohr_coulomb ? rounded(closed_form * 1e-6) : Json(nullptr);
+    s["closed_form_ucs_MPa"]  = plastic ? rounded(closed_form * 1e-6) : Json(nullptr);
     s["platen_diameter_mm"]   = rounded(r.platen_diameter * 1e3);
     s["wall_seconds"]         = rounded(r.wall_seconds);
     s["end_reason"]           = r.end_reason;

@@ -748,10 +748,6 @@ namespace coupling
     if (prm.test != "UCS")
       throw InputError("reference: Test/Type = " + prm.test +
                        ": the reference models the UCS cylinder only");
-    if (prm.rock.model == sph::RockModel::hoek_brown)
-      throw InputError(
-        "reference: Rock/Model = hoek-brown: the reference models elastic and Mohr-Coulomb rock "
-        "(mohr-coulomb, mohr-coulomb-cutoff)");
     if (options.degree < 1 || options.degree > 2)
       throw InputError("reference: degree " + std::to_string(options.degree) + ": accepted 1 or 2");
     if (options.n_radial < 1 || options.n_radial > 256)

@@ -110,8 +110,6 @@ TEST(ReferencePoint, RefusesWhatItCannotModel)
   p.test = "BTS";
   EXPECT_THROW(run_reference_cylinder(p, o), InputError);
   p.test       = "UCS";
-  p.rock.model = sph::RockModel::hoek_brown;
-  EXPECT_THROW(run_reference_cylinder(p, o), InputError);
   p.rock.model = sph::RockModel::mohr_coulomb;
   o.degree     = 3;
   EXPECT_THROW(run_reference_cylinder(p, o), InputError);
