@@ -31,6 +31,7 @@ het=(--set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" --set "R
 steel=(--set "Platens/Model=elastic")
 rollers=("${steel[@]}" --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller")
 fitted=(--set "SPH/Particle arrangement=body-fitted")
+plastic=(--set "Rock/Residual fraction=1" --set "Loading/End strain=0.005") # no softening
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 eval "extra=(${EXTRA:-})" # keys with spaces stay one word
 
@@ -87,6 +88,22 @@ run() {
                     --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
     platens-ucs-bonded) study platens-ucs-bonded $ucs --set "Platens/Bonded=true" \
                     --vary "Platens/Model=rigid,elastic" --vary "Test/Length=0.05,0.1,0.125" ;;
+    # the same with the cases' default rock (Hoek-Brown, the simulator's envelope)
+    platens-ucs-hb) unpinned platens-ucs-hb $ucs --vary "Platens/Model=rigid,elastic" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
+    platens-ucs-bonded-hb) unpinned platens-ucs-bonded-hb $ucs --set "Platens/Bonded=true" \
+                    --vary "Platens/Model=rigid,elastic" --vary "Test/Length=0.05,0.1,0.125" ;;
+    platens-bts-hb) unpinned platens-bts-hb $disc --vary "Platens/Model=rigid,elastic" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" ;;
+    platens-bts-bonded-hb) unpinned platens-bts-bonded-hb $disc --set "Platens/Bonded=true" \
+                    --vary "Platens/Model=rigid,elastic" ;;
+    # that rock perfectly plastic (as cosim reference's) at three spacings: end friction on rigid
+    # platens, bonded rigid and elastic platens
+    platens-ucs-hb-plastic) unpinned platens-ucs-hb-plastic $ucs "${plastic[@]}" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-ucs-hb-plastic-bonded) unpinned platens-ucs-hb-plastic-bonded $ucs "${plastic[@]}" \
+                    --set "Platens/Bonded=true" --vary "Platens/Model=rigid,elastic" \
+                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
     # rigid platens on the body-fitted specimen (its side round: no staircase at the platen's rim)
     platens-ucs-fitted) study platens-ucs-fitted $ucs "${fitted[@]}" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
@@ -249,7 +266,8 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-rollers-spacing-fitted platens-rollers-mesh-fitted platens-rollers-patch-fitted
      platens-rollers-overhang-fitted platens-rollers-grid-fitted
      platens-wide-fitted platens-wide-fitted-crack-band platens-wide-fitted-friction
-     platens-wide-fitted-bonded)
+     platens-wide-fitted-bonded platens-ucs-hb platens-ucs-bonded-hb platens-bts-hb platens-bts-bonded-hb
+     platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done

@@ -341,7 +341,12 @@ TEST(Discovery, Heterogeneity)
 // for pairs) and within 3.5 of its reported standard errors of the truth.
 // Measured: the worst error is 12.2 % (mu beside the cut-off, 1.7 SE); 124 of 126 estimates lie
 // within 3 SE. The other two are E0_ratio at 3.05 and 3.17 SE (errors of 1.4 % and 1.9 %): in a
-// pair its standard error comes out a little small.
+// pair its standard error comes out a little small. Over all 126 the standard errors cover the
+// truth near their nominal rates: 62 / 92 / 98 % within 1 / 2 / 3 of them (a normal error: 68
+// / 95 / 99.7 %); by parameter the RMS of error / SE is 0.38 (T0_A, conservative) to 1.64
+// (weibull_m: its standard error some 40 % small). The test requires 85 % within two (with 126
+// estimates the nominal 95 % has a binomial spread of 2 %; 85 % leaves room for the seeds'
+// correlation).
 // Where a curved envelope is hidden beside rate, friction or heterogeneity, a cut-off is
 // sometimes named as well (5 of 63 data sets name three effects); that is allowed here, since
 // both hidden effects are still named.
@@ -357,6 +362,7 @@ TEST(Discovery, EveryPairOfEffects)
     {"heterogeneity", "weibull_m"},
   };
   const std::vector<unsigned> pair_seeds = discovery::seeds({1, 2, 3});
+  int n_estimates = 0, n_within_two = 0; // standard errors' coverage over every pair and seed
   for (std::size_t i = 0; i < all.size(); ++i)
     for (std::size_t j = i + 1; j < all.size(); ++j)
       for (unsigned seed : pair_seeds)
@@ -387,6 +393,8 @@ TEST(Discovery, EveryPairOfEffects)
           const double v = parameter(d, h.parameter), se = standard_error(d, h.parameter);
           EXPECT_NEAR(v, truth, 0.2 * truth) << name << " seed " << seed << ' ' << h.parameter;
           EXPECT_LT(std::abs(v - truth), 3.5 * se) << name << " seed " << seed << ' ' << h.parameter;
+          n_estimates += 1;
+          n_within_two += std::abs(v - truth) <= 2 * se;
         };
         EXPECT_TRUE(named(d, all[i].effect)) << name << " seed " << seed;
         EXPECT_TRUE(named(d, all[j].effect)) << name << " seed " << seed;
@@ -396,4 +404,7 @@ TEST(Discovery, EveryPairOfEffects)
           close(all[j], tj);
         EXPECT_GE(d.discrepancy_gain, 5.0) << name << " seed " << seed;
       }
+  std::cout << "[ result ] standard errors: " << n_within_two << " of " << n_estimates
+            << " estimates within two of the truth\n";
+  EXPECT_GE(n_within_two, 0.85 * n_estimates);
 }

@@ -4,8 +4,8 @@
 /// the rock cylinder between platens (deal.II, axisymmetric in (r, z), small strain, Newton with a
 /// finite-difference consistent tangent, displacement-controlled increments). The rock is linear
 /// elastic + perfectly plastic Mohr-Coulomb (non-associated, dilation psi, optional tension
-/// cut-off) updated by the SPH rock's own return mapping (sph/rock_models.h), with softening and
-/// strength scatter switched off. The platens are rigid (prescribed axial displacement of the end
+/// cut-off) or Hoek-Brown (its plastic potential as sph's), updated by the SPH rock's own return
+/// mapping (sph/rock_models.h), with softening and strength scatter switched off. The platens are rigid (prescribed axial displacement of the end
 /// faces) or elastic steel meshed as their own regions, tied to the rock at conforming interface
 /// nodes: bonded (u_r and u_z tied) or free-slip (u_z tied, u_r free, no friction). The tie assumes
 /// the interface never opens, which holds while the specimen is compressed.
@@ -95,7 +95,7 @@ namespace coupling
   };
 
   /// Runs the reference for the UCS case `prm` (its specimen, rock and platens). InputError (one
-  /// line) for a case it cannot model: not UCS, a Hoek-Brown rock, bad options.
+  /// line) for a case it cannot model: not UCS, bad options.
   ReferenceResult run_reference_cylinder(const CaseParameters &prm,
                                          const ReferenceOptions &options);
 
