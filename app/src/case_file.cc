@@ -649,11 +649,12 @@ namespace app
         result.warnings.push_back(
           "Platens/Diameter = " + keys::format(platen_diameter) +
           " m: on elastic platens wider than the specimen the peak does not converge in spacing (M1, "
-          "body-fitted, 60 mm platens, default softening, 5 / 2.5 / 1.25 mm: 244.6 / 187.2 / 161.9 MPa "
-          "frictionless, 252.3 / 258.3 / 231.0 at friction 0.3; the closed form 282.2): the rim loads "
-          "the rock unevenly, and with a dilation angle below the friction angle (non-associated flow) "
-          "the FE reference's peak falls with its mesh too (278.3 / 263.5 MPa; 282.2 on every mesh with "
-          "associated flow); quote a peak from platens of the specimen's diameter on rollers "
+          "Table 4's Mohr-Coulomb, body-fitted, 60 mm platens, default softening, 5 / 2.5 / 1.25 mm: "
+          "244.6 / 187.2 / 161.9 MPa frictionless, 252.3 / 258.3 / 231.0 at friction 0.3; the closed "
+          "form 282.2): the rim loads the rock unevenly, and with a dilation angle below the friction "
+          "angle (non-associated flow) the FE reference's peak falls with its mesh too (278.3 / 263.5 "
+          "MPa; 282.2 on every mesh with associated flow); quote a peak from platens of the "
+          "specimen's diameter on rollers "
           "(Platens/Diameter = Test/Diameter, Platens/Loaded face = roller)");
       const bool cutting    = p.test == "indentation" || p.test == "linear-cutting";
       // platen elements finer than the particles: the kinematic contact on elastic platens stays
