@@ -129,6 +129,12 @@ run() {
                     --vary "Platens/Frame stiffness=0,5.3e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
     basalt-ucs-compliance) study basalt-ucs-compliance $ucs --set "Loading/End strain=0.03" \
                     --vary "Platens/Frame stiffness=0,5.3e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
+    # the same on the default disc and cylinder with the cases' Hoek-Brown rock (the frame
+    # stiffness k = P / (0.080 mm - d) from that disc's own peak load and displacement at 1.25 mm)
+    basalt-bts-compliance-hb) unpinned basalt-bts-compliance-hb $disc --set "SPH/Particle spacing=0.00125" \
+                    --vary "Platens/Frame stiffness=0,7.0e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
+    basalt-ucs-compliance-hb) unpinned basalt-ucs-compliance-hb $ucs --set "Loading/End strain=0.03" \
+                    --vary "Platens/Frame stiffness=0,7.0e8" --vary "Rock/Closure modulus ratio=1,0.3,0.2,0.1" ;;
     # 5 mm (10 particles across): 18 runs in the time budget of a shared machine
     ctcs)         study ctcs $ctcs --set "SPH/Particle spacing=0.005" --key "Test/Confining pressure" --values 10e6,30e6,50e6 \
                     --key "Rock/Strength parameters" --values calibrated,measured --groups M8,M9,M10 ;;
@@ -267,7 +273,7 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-rollers-overhang-fitted platens-rollers-grid-fitted
      platens-wide-fitted platens-wide-fitted-crack-band platens-wide-fitted-friction
      platens-wide-fitted-bonded platens-ucs-hb platens-ucs-bonded-hb platens-bts-hb platens-bts-bonded-hb
-     platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded)
+     platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
