@@ -414,9 +414,11 @@ namespace app
                     return p;
                   },
                   [mb0, sci](const double k) {
+                    // calibrated: sigma_ci = the UCS and the m_b, a given (envelope and simulated
+                    // refuse an m_b of their own)
                     std::printf("m_b %.4f (the closed form's %.4f), no cut-off but the apex %.4f MPa; run with:\n"
-                                "  --set \"Rock/Hoek-Brown mi=%.6g\" --set \"Rock/Hoek-Brown a=0.5\" --set "
-                                "\"Rock/Tensile strength=0\"\n",
+                                "  --set \"Rock/Strength parameters=calibrated\" --set \"Rock/Hoek-Brown mi=%.6g\" "
+                                "--set \"Rock/Hoek-Brown a=0.5\" --set \"Rock/Tensile strength=0\"\n",
                                 mb0 / k, mb0, sci / (mb0 / k) * 1e-6, mb0 / k);
                   }};
       return disc_scale_calibration(o, ucs_case, bts_case, ucs_target, bts_target, d);
