@@ -613,6 +613,23 @@ TEST(Calibrate, MbCalibrationRecoversTheMbThatMadeItsTarget)
   const auto u = r.out.find("check UCS ");
   ASSERT_NE(u, std::string::npos) << r.out;
   EXPECT_NEAR(std::stod(r.out.substr(u + 10)) / 282.18, 1.0, 0.01) << r.out;
+  // the printed "run with" line runs the disc with that m_b on the shipped case (whose strengths
+  // are simulated, which refuse an m_b of their own) and gives the target (0.5 %: the fit's
+  // tolerance)
+  const auto w = r.out.find("run with:\n");
+  ASSERT_NE(w, std::string::npos) << r.out;
+  const std::string line = r.out.substr(w + 10, r.out.find('\n', w + 10) - (w + 10));
+  std::vector<std::string> args{"run", bts, "-o", (box.dir() / "c").string(), "--quiet"};
+  for (auto q = line.find('"'); q != std::string::npos; q = line.find('"', line.find('"', q + 1) + 1))
+  {
+    args.push_back("--set");
+    args.push_back(line.substr(q + 1, line.find('"', q + 1) - q - 1));
+  }
+  ASSERT_GE(args.size(), 7u) << line;
+  const Result again = run_cosim(box, args);
+  ASSERT_EQ(again.status, 0) << line << "\n" << again.err;
+  const std::string rerun = read_file(box.dir() / "c" / "summary.json");
+  EXPECT_NEAR(std::stod(rerun.substr(rerun.find("\"peak_stress_MPa\":") + 18)) / target, 1.0, 0.005) << line;
 }
 
 // The output files of a real run: the default UCS case end to end (coarse spacing to stay quick).
