@@ -189,7 +189,8 @@ namespace app
            "Writes into OUTDIR (default results/<case stem>-reference):\n"
            "  summary.json          peak stress and force, strain and platen displacement at the "
            "peak,\n"
-           "                        the rock's uniaxial closed form (closed_form_ucs_MPa; Mohr-Coulomb's\n"
+           "                        the rock's uniaxial closed form (closed_form_ucs_MPa; "
+           "Mohr-Coulomb's\n"
            "                        also as mohr_coulomb_ucs_MPa), mesh, Newton counts, wall time\n"
            "  curve.csv             platen_displacement_mm, strain (specimen), radial_strain "
            "(mid-height),\n"
@@ -261,7 +262,7 @@ namespace app
 
     const coupling::ReferenceResult r = coupling::run_reference_cylinder(p, o.reference);
 
-    using Json               = nlohmann::ordered_json;
+    using Json              = nlohmann::ordered_json;
     const bool plastic      = p.rock.model != sph::RockModel::elastic;
     const bool hoek_brown   = p.rock.model == sph::RockModel::hoek_brown;
     const bool mohr_coulomb = plastic && !hoek_brown;
@@ -269,16 +270,20 @@ namespace app
     // sigma_ci s^a (a cut-off does not reach a compressive test)
     const double closed_form =
       hoek_brown ? p.rock.hb_sigma_ci * std::pow(p.rock.hb_s, p.rock.hb_a)
-                 : coupling::mohr_coulomb_axial_strength(
-                     p.rock.cohesion, p.rock.friction_angle * 180.0 / M_PI, 0.0);
+                 : coupling::mohr_coulomb_axial_strength(p.rock.cohesion,
+                                                         p.rock.friction_angle * 180.0 / M_PI, 0.0);
     Json s;
     s["test"]   = "UCS";
     s["solver"] = "reference: implicit axisymmetric FE (deal.II), perfectly plastic rock";
     s["group"]  = p.rock_case.group;
-    s["rock_model"] = hoek_brown     ? "hoek-brown"
-                      : !plastic     ? "elastic"
-                      : p.rock.model == sph::RockModel::mohr_coulomb_cutoff ? "mohr-coulomb-cutoff"
-                                                                          : "mohr-coulomb";
+    std::string rock_model = "mohr-coulomb";
+    if (hoek_brown)
+      rock_model = "hoek-brown";
+    else if (!plastic)
+      rock_model = "elastic";
+    else if (p.rock.model == sph::RockModel::mohr_coulomb_cutoff)
+      rock_model = "mohr-coulomb-cutoff";
+    s["rock_model"] = rock_model;
     s["platens"] = o.reference.platens == coupling::ReferencePlatens::rigid ? "rigid" : "elastic";
     s["interface"] =
       o.reference.interface == coupling::ReferenceInterface::bonded ? "bonded" : "free-slip";

@@ -237,6 +237,14 @@ run() {
     # particles are refused, and 2.5 mm elements at 2.5 and 1.25 mm are in -mesh- and -spacing-fitted)
     platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
                     --vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # the same with the cases' Hoek-Brown rock: three spacings x three meshes (elements finer
+    # than the particles refused), and the interface's numbers x4 and /4
+    platens-rollers-grid-hb) unpinned platens-rollers-grid-hb $ucs "${rollers[@]}" "${fitted[@]}" \
+                    --vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-rollers-fine-hb) unpinned platens-rollers-fine-hb $ucs "${rollers[@]}" "${fitted[@]}" \
+                    --set "Platens/Element size=0.0025" --vary "SPH/Particle spacing=0.0025,0.00125" ;;
+    platens-rollers-numerics-hb) unpinned platens-rollers-numerics-hb $ucs "${rollers[@]}" "${fitted[@]}" \
+                    --vary "Platens/Contact tolerance=2.5e-7,1e-6,4e-6" --vary "Platens/Contact patch points=2,4,16" ;;
     # wider platens on the body-fitted specimen (ISRM: up to D + 2 mm), at three spacings
     platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs "${steel[@]}" "${fitted[@]}" \
                     --set "Platens/Loaded face=roller" \
@@ -273,7 +281,8 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-rollers-overhang-fitted platens-rollers-grid-fitted
      platens-wide-fitted platens-wide-fitted-crack-band platens-wide-fitted-friction
      platens-wide-fitted-bonded platens-ucs-hb platens-ucs-bonded-hb platens-bts-hb platens-bts-bonded-hb
-     platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb)
+     platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb
+     platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done

@@ -5,7 +5,8 @@
 /// finite-difference consistent tangent, displacement-controlled increments). The rock is linear
 /// elastic + perfectly plastic Mohr-Coulomb (non-associated, dilation psi, optional tension
 /// cut-off) or Hoek-Brown (its plastic potential as sph's), updated by the SPH rock's own return
-/// mapping (sph/rock_models.h), with softening and strength scatter switched off. The platens are rigid (prescribed axial displacement of the end
+/// mapping (sph/rock_models.h), with softening and strength scatter switched off. The platens
+/// are rigid (prescribed axial displacement of the end
 /// faces) or elastic steel meshed as their own regions, tied to the rock at conforming interface
 /// nodes: bonded (u_r and u_z tied) or free-slip (u_z tied, u_r free, no friction). The tie assumes
 /// the interface never opens, which holds while the specimen is compressed.
