@@ -19,6 +19,7 @@
 #include <cmath>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 namespace coupling
@@ -128,12 +129,23 @@ namespace coupling
     const bool fitted = prm_.particle_arrangement == sph::ParticleArrangement::body_fitted;
     // body-fitted: the inner volumes consistent with the body's kernel (sph::SummedWith)
     const sph::SummedWith kernel = sph::summed_with(prm_.sph);
-    const sph::Lattice<3> lattice =
-      bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx, prm_.flat_angle,
-                                             kernel)
-                     : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
-           : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx, kernel)
-                     : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));
+    const sph::Lattice<3> lattice = [&] {
+      try
+      {
+        return bts_ ? (fitted ? sph::make_fitted_disc(prm_.diameter, prm_.length, dx,
+                                                      prm_.flat_angle, kernel)
+                              : sph::make_disc<3>(prm_.diameter, prm_.length, dx, prm_.flat_angle))
+                    : (fitted ? sph::make_fitted_cylinder(prm_.diameter, prm_.length, dx, kernel)
+                              : sph::make_cylinder<3>(prm_.diameter, prm_.length, dx));
+      }
+      catch (const std::domain_error &e)
+      {
+        // a smoothing length too wide for the body-fitted centre (measured: from CSLH 1.9 on the
+        // default disc)
+        throw InputError("SPH/CSLH = " + std::to_string(prm_.sph.cslh) + ": " + e.what() +
+                         "; use a smaller CSLH or SPH/Particle arrangement = lattice");
+      }
+    }();
     true_area_                    = lattice.true_section_area;
     lattice_area_                 = lattice.lattice_section_area;
     // half the particle extent along the load: the cylinder's layer distance L / round(L / dx),

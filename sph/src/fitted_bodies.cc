@@ -2,6 +2,8 @@
 
 #include "lattice_detail.h"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -177,6 +179,12 @@ namespace sph
         for (std::size_t j = 0; j < layer.size(); ++j)
           if (const double w = stacked(layer[all[a]], layer[j]); w > 0)
             terms[a].push_back({j, w});
+      // A_i <- A_i target / S_i converges for the kernels up to h = 1.3 dx; a wider kernel couples
+      // the corrected particles more strongly than their own weights and the iteration oscillates
+      // apart (h = 1.4 dx on). Then the same conditions are solved as the linear system they are:
+      // sum_(j own) (w_aj - m_j) A_j = t - c_a, with c the fixed particles' share of a sum, m_j
+      // and t the mean over the target rings of w_bj and of c_b.
+      const std::vector<RingPoint> original = layer;
       for (int it = 0; it < 1000; ++it)
         {
           std::vector<double> sum(all.size(), 0.0);
@@ -191,10 +199,52 @@ namespace sph
             worst = std::max(worst, std::abs(sum[a] / target - 1));
           if (worst < 1e-10)
             return;
+          if (!(worst < 1e3))
+            break; // oscillating apart
           for (std::size_t a = 0; a < own.size(); ++a)
             layer[own[a]].area *= target / sum[a];
         }
-      throw std::logic_error("sph fitted body: the kernel-consistent volumes did not converge");
+      layer = original;
+      const std::size_t n = own.size();
+      std::vector<std::size_t> column(layer.size(), n); // layer index -> unknown (n: fixed)
+      for (std::size_t a = 0; a < n; ++a)
+        column[own[a]] = a;
+      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n), mean_w = Eigen::VectorXd::Zero(n);
+      double mean_c = 0;
+      for (std::size_t a = n; a < all.size(); ++a)
+        for (const auto &[j, w] : terms[a])
+          {
+            if (column[j] < n)
+              mean_w[column[j]] += w / beyond.size();
+            else
+              mean_c += layer[j].area * w / beyond.size();
+          }
+      for (std::size_t a = 0; a < n; ++a)
+        {
+          double c = 0;
+          for (const auto &[j, w] : terms[a])
+            {
+              if (column[j] < n)
+                M(a, column[j]) += w;
+              else
+                c += layer[j].area * w;
+            }
+          M.row(a) -= mean_w.transpose();
+          rhs[a] = mean_c - c;
+        }
+      const Eigen::VectorXd A = M.colPivHouseholderQr().solve(rhs);
+      bool positive = (M * A - rhs).norm() <= 1e-8 * rhs.norm();
+      for (std::size_t a = 0; a < n; ++a)
+        positive = positive && A[a] > 0;
+      if (positive)
+        {
+          for (std::size_t a = 0; a < n; ++a)
+            layer[own[a]].area = A[a];
+          return;
+        }
+      throw std::domain_error("the body-fitted particles' kernel-consistent volumes have no positive "
+                              "solution at h = " + std::to_string(h / dr) + " ring steps");
     }
 
     /// `layer` stacked `n` times, `step` [m] apart: layer k's ring point p at place(k, p), its

@@ -96,6 +96,16 @@ TEST(BadInput, NegativeSpacing)
   expect_bad_input(box, {"run", ucs_case, "--set", "SPH/Particle spacing=-0.001"}, {"SPH/Particle spacing", "must be > 0"});
 }
 
+TEST(BadInput, SmoothingLengthTooWideForTheBodyFittedCentre)
+{
+  // the body-fitted disc's kernel-consistent centre volumes have no positive solution at h = 2 dx
+  // (accepted by SPH/CSLH's range, which the lattice takes): refused as bad input, not an
+  // internal error (it was exit 1 from CSLH 1.4 on)
+  Sandbox box;
+  expect_bad_input(box, {"run", source("cases/bts/bts.prm"), "--set", "SPH/CSLH=2"},
+                   {"SPH/CSLH", "no positive solution", "SPH/Particle arrangement = lattice"});
+}
+
 TEST(BadInput, SpecimenSizedSpacing)
 {
   Sandbox box;
