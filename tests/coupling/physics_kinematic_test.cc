@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -173,24 +174,29 @@ TEST(CoupledKinematic, DefaultCasesGiveTable3WithTheirHoekBrownRock)
 
 namespace
 {
-  /// The UCS case with a perfectly plastic rock (no softening, as the FE reference) to 0.5 %.
-  CaseParameters perfectly_plastic_ucs(std::vector<std::string> settings)
+  /// The UCS case with a perfectly plastic rock (no softening, as the FE reference) to 0.5 %:
+  /// Mohr-Coulomb (kinematic_case), or the case's own Hoek-Brown rock (default_case; M1: sigma_ci
+  /// 282.18 MPa, m_b 16.43, a 1/2, psi 0).
+  CaseParameters perfectly_plastic_ucs(std::vector<std::string> settings, const bool hoek_brown = false)
   {
     settings.push_back("Rock/Residual fraction=1");
     settings.push_back("Loading/End strain=0.005");
-    return kinematic_case("ucs/ucs.prm", settings);
+    return hoek_brown ? default_case("ucs/ucs.prm", settings) : kinematic_case("ucs/ucs.prm", settings);
   }
 
   /// cosim reference's solution of the perfectly plastic case p with bonded ends on `platens`
-  /// (Q2, 8 elements per radius, 60 increments to 0.6 % strain)
-  ReferenceResult bonded_reference(const CaseParameters &p, const ReferencePlatens platens)
+  /// (Q2, 8 elements per radius, 60 increments to 0.6 % strain; the Hoek-Brown tests 35 to
+  /// 0.35 %: its peak lies at 0.27-0.29 %, and past it Newton stalls, as with Mohr-Coulomb and
+  /// psi = 0)
+  ReferenceResult bonded_reference(const CaseParameters &p, const ReferencePlatens platens,
+                                   const unsigned int n_increments = 60, const double end_strain = 0.006)
   {
     ReferenceOptions o;
     o.interface    = ReferenceInterface::bonded;
     o.platens      = platens;
     o.n_radial     = 8;
-    o.n_increments = 60;
-    o.end_strain   = 0.006;
+    o.n_increments = n_increments;
+    o.end_strain   = end_strain;
     return run_reference_cylinder(p, o);
   }
 
@@ -198,6 +204,18 @@ namespace
   {
     RunObserver quiet;
     return run_case(p, quiet).peak_stress;
+  }
+
+  /// The perfectly plastic cylinder between rigid platens at 5 mm (for time): its peaks with
+  /// free-slip ends, Coulomb friction 0.1 and 0.3, and bonded ends [Pa].
+  std::array<double, 4> end_friction_peaks(const bool hoek_brown)
+  {
+    std::array<double, 4> out{};
+    const char *ends[] = {"Platens/Friction coefficient=0", "Platens/Friction coefficient=0.1",
+                          "Platens/Friction coefficient=0.3", "Platens/Bonded=true"};
+    for (int k = 0; k < 4; ++k)
+      out[k] = peak(perfectly_plastic_ucs({"SPH/Particle spacing=0.005", ends[k]}, hoek_brown));
+    return out;
   }
 
   /// At each snapshot: the top end layer's axial stress (compression +) in ten radial rings of
@@ -291,16 +309,7 @@ TEST(CoupledKinematic, EndFrictionLiesBetweenFreeSlipAndBondedEnds)
   // the bonded one, and more friction must hold the ends more. With this rock (Mohr-Coulomb,
   // psi = 0) held ends weaken the cylinder, as the FE reference does (next test). Measured:
   // 283.50 / 274.65 / 259.63 / 247.43 MPa
-  const std::vector<std::string> at_5mm{"SPH/Particle spacing=0.005"};
-  auto with = [&](const std::string &setting) {
-    std::vector<std::string> s = at_5mm;
-    s.push_back(setting);
-    return peak(perfectly_plastic_ucs(s));
-  };
-  const double free_slip = with("Platens/Friction coefficient=0");
-  const double mu_01     = with("Platens/Friction coefficient=0.1");
-  const double mu_03     = with("Platens/Friction coefficient=0.3");
-  const double bonded    = with("Platens/Bonded=true");
+  const auto [free_slip, mu_01, mu_03, bonded] = end_friction_peaks(false);
   // 1 %: the closed form on free-slip ends (perfect plasticity: the plateau)
   EXPECT_NEAR(free_slip / closed_form_ucs(), 1.0, 0.01);
   EXPECT_LT(mu_01, free_slip);
@@ -357,32 +366,6 @@ TEST(CoupledKinematic, BondedElasticPlatensGiveTheFeReferencePeakAndEndFace)
   EXPECT_LT(rms, 0.05);
 }
 
-namespace
-{
-  /// The default UCS case (its Hoek-Brown rock, M1: sigma_ci 282.18 MPa, m_b 16.43, a 1/2, psi
-  /// 0) made perfectly plastic, as the FE reference's rock.
-  CaseParameters perfectly_plastic_hoek_brown_ucs(std::vector<std::string> settings)
-  {
-    settings.push_back("Rock/Residual fraction=1");
-    settings.push_back("Loading/End strain=0.005");
-    return default_case("ucs/ucs.prm", settings);
-  }
-
-  /// cosim reference's bonded solution of the Hoek-Brown case p on `platens` (Q2, 8 elements per
-  /// radius, 35 increments to 0.35 % strain: its peak lies at 0.27-0.29 %, and past it Newton
-  /// stalls, as with Mohr-Coulomb and psi = 0)
-  ReferenceResult hoek_brown_bonded_reference(const CaseParameters &p, const ReferencePlatens platens)
-  {
-    ReferenceOptions o;
-    o.interface    = ReferenceInterface::bonded;
-    o.platens      = platens;
-    o.n_radial     = 8;
-    o.n_increments = 35;
-    o.end_strain   = 0.0035;
-    return run_reference_cylinder(p, o);
-  }
-} // namespace
-
 TEST(CoupledKinematic, HoekBrownEndFrictionLiesBetweenTheFeReferencesFreeSlipAndBondedPeaks)
 {
   // The cases' default rock between rigid platens: Coulomb friction of 0.1 and 0.3 must give
@@ -393,23 +376,14 @@ TEST(CoupledKinematic, HoekBrownEndFrictionLiesBetweenTheFeReferencesFreeSlipAnd
   // / 268.29 / >= 267.51, the finest stalled while still rising). Table 4's Mohr-Coulomb rock
   // (the tests above) lies between its own references too, its held ends costing it far more
   // (mu 0.3 at 2.5 mm: 259.14 MPa, bonded reference 255.98; cases/studies/platens/README.md).
-  const std::vector<std::string> at_5mm{"SPH/Particle spacing=0.005"};
-  auto with = [&](const std::string &setting) {
-    std::vector<std::string> s = at_5mm;
-    s.push_back(setting);
-    return peak(perfectly_plastic_hoek_brown_ucs(s));
-  };
-  const double free_slip = with("Platens/Friction coefficient=0");
-  const double mu_01     = with("Platens/Friction coefficient=0.1");
-  const double mu_03     = with("Platens/Friction coefficient=0.3");
-  const double bonded    = with("Platens/Bonded=true");
-  const CaseParameters p = perfectly_plastic_hoek_brown_ucs({});
+  const auto [free_slip, mu_01, mu_03, bonded] = end_friction_peaks(true);
+  const CaseParameters p = perfectly_plastic_ucs({}, true);
   ReferenceOptions o;
   o.n_radial                  = 4;
   o.n_increments              = 35;
   o.end_strain                = 0.0035;
   const double reference_free = run_reference_cylinder(p, o).peak_stress;
-  const ReferenceResult held  = hoek_brown_bonded_reference(p, ReferencePlatens::rigid);
+  const ReferenceResult held  = bonded_reference(p, ReferencePlatens::rigid, 35, 0.0035);
   std::cout << "[hoek-brown] coupled " << free_slip / 1e6 << " / " << mu_01 / 1e6 << " / "
             << mu_03 / 1e6 << " / " << bonded / 1e6 << " MPa; reference " << reference_free / 1e6
             << " / " << held.peak_stress / 1e6 << " MPa (" << held.end_reason << ")\n";
@@ -440,11 +414,11 @@ TEST(CoupledKinematic, HoekBrownBondedPlatensGiveTheFeReferencePeakAndEndFace)
     std::vector<std::string> s{"Platens/Bonded=true", "Output/Snapshots=80"};
     if (elastic)
       s.push_back("Platens/Model=elastic");
-    const CaseParameters p = perfectly_plastic_hoek_brown_ucs(s);
+    const CaseParameters p = perfectly_plastic_ucs(s, true);
     EndFaceObserver face(p.sph.spacing, 0.5 * p.diameter);
     const double coupled    = run_case(p, face).peak_stress;
-    const ReferenceResult r = hoek_brown_bonded_reference(
-      p, elastic ? ReferencePlatens::elastic : ReferencePlatens::rigid);
+    const ReferenceResult r = bonded_reference(
+      p, elastic ? ReferencePlatens::elastic : ReferencePlatens::rigid, 35, 0.0035);
     const double rms = end_face_rms(face, coupled, r, 0.5 * p.diameter);
     std::cout << "[hoek-brown bonded, " << (elastic ? "elastic" : "rigid") << "] coupled "
               << coupled / 1e6 << " MPa, reference " << r.peak_stress / 1e6 << " MPa ("
