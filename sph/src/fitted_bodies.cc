@@ -200,7 +200,7 @@ namespace sph
           if (worst < 1e-10)
             return;
           if (!(worst < 1e3))
-            break; // oscillating apart
+            break; // oscillating apart (a converging iteration stays within a few per cent)
           for (std::size_t a = 0; a < own.size(); ++a)
             layer[own[a]].area *= target / sum[a];
         }
