@@ -31,6 +31,9 @@ het=(--set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" --set "R
 steel=(--set "Platens/Model=elastic")
 rollers=("${steel[@]}" --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller")
 fitted=(--set "SPH/Particle arrangement=body-fitted")
+fitted_rollers=("${rollers[@]}" "${fitted[@]}")
+# every spacing with the coarser meshes (elements finer than the particles are refused)
+grid=(--vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 plastic=(--set "Rock/Residual fraction=1" --set "Loading/End strain=0.005") # no softening
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 eval "extra=(${EXTRA:-})" # keys with spaces stay one word
@@ -227,23 +230,21 @@ run() {
     platens-rollers-mesh) study platens-rollers-mesh $ucs "${rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     # the same on the body-fitted specimen (its side round: no staircase against the platen's rim)
-    platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
+    platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs "${fitted_rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
+    platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs "${fitted_rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
-    platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
+    platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs "${fitted_rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Contact patch points=1,2,4,8,16" ;;
     # every spacing with the coarser meshes (the default softening; elements finer than the
     # particles are refused, and 2.5 mm elements at 2.5 and 1.25 mm are in -mesh- and -spacing-fitted)
-    platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs "${rollers[@]}" "${fitted[@]}" \
-                    --vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    platens-rollers-grid-fitted) study platens-rollers-grid-fitted $ucs "${fitted_rollers[@]}" "${grid[@]}" ;;
     # the same with the cases' Hoek-Brown rock: three spacings x three meshes (elements finer
     # than the particles refused), and the interface's numbers x4 and /4
-    platens-rollers-grid-hb) unpinned platens-rollers-grid-hb $ucs "${rollers[@]}" "${fitted[@]}" \
-                    --vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
-    platens-rollers-fine-hb) unpinned platens-rollers-fine-hb $ucs "${rollers[@]}" "${fitted[@]}" \
+    platens-rollers-grid-hb) unpinned platens-rollers-grid-hb $ucs "${fitted_rollers[@]}" "${grid[@]}" ;;
+    platens-rollers-fine-hb) unpinned platens-rollers-fine-hb $ucs "${fitted_rollers[@]}" \
                     --set "Platens/Element size=0.0025" --vary "SPH/Particle spacing=0.0025,0.00125" ;;
-    platens-rollers-numerics-hb) unpinned platens-rollers-numerics-hb $ucs "${rollers[@]}" "${fitted[@]}" \
+    platens-rollers-numerics-hb) unpinned platens-rollers-numerics-hb $ucs "${fitted_rollers[@]}" \
                     --vary "Platens/Contact tolerance=2.5e-7,1e-6,4e-6" --vary "Platens/Contact patch points=2,4,16" ;;
     # wider platens on the body-fitted specimen (ISRM: up to D + 2 mm), at three spacings
     platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs "${steel[@]}" "${fitted[@]}" \
