@@ -35,6 +35,10 @@ fitted_rollers=("${rollers[@]}" "${fitted[@]}")
 # every spacing with the coarser meshes (elements finer than the particles are refused)
 grid=(--vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 plastic=(--set "Rock/Residual fraction=1" --set "Loading/End strain=0.005") # no softening
+# the crack band with a shear fault's fracture energy (G_II = 100 G_I = 1e4 J/m^2, Wong 1982):
+# compressive failure regularised at every spacing below 19 mm (2 E G_II / UCS^2 = 24 mm)
+shear=(--set "Rock/Softening law=fracture energy" --set "Rock/Shear fracture energy ratio=100")
+spacings=(--vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 eval "extra=(${EXTRA:-})" # keys with spaces stay one word
 
@@ -107,6 +111,16 @@ run() {
     platens-ucs-hb-plastic-bonded) unpinned platens-ucs-hb-plastic-bonded $ucs "${plastic[@]}" \
                     --set "Platens/Bonded=true" --vary "Platens/Model=rigid,elastic" \
                     --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+    # that rock softening by the crack band with a shear fault's G_II at three spacings: end
+    # friction on rigid platens, bonded rigid and elastic platens, G_II / 4 and x 4
+    platens-ucs-hb-shear-energy) unpinned platens-ucs-hb-shear-energy $ucs "${shear[@]}" \
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" "${spacings[@]}" ;;
+    platens-ucs-hb-shear-energy-bonded) unpinned platens-ucs-hb-shear-energy-bonded $ucs "${shear[@]}" \
+                    --set "Platens/Bonded=true" --vary "Platens/Model=rigid,elastic" "${spacings[@]}" ;;
+    platens-ucs-hb-shear-energy-ratio) unpinned platens-ucs-hb-shear-energy-ratio $ucs "${shear[@]}" \
+                    --set "Platens/Friction coefficient=0.3" \
+                    --vary "Rock/Shear fracture energy ratio=6.25,25,100,400" \
+                    --vary "SPH/Particle spacing=0.0025,0.00125" ;;
     # rigid platens on the body-fitted specimen (its side round: no staircase at the platen's rim)
     platens-ucs-fitted) study platens-ucs-fitted $ucs "${fitted[@]}" \
                     --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "Test/Length=0.05,0.1,0.125" ;;
@@ -283,7 +297,8 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-wide-fitted platens-wide-fitted-crack-band platens-wide-fitted-friction
      platens-wide-fitted-bonded platens-ucs-hb platens-ucs-bonded-hb platens-bts-hb platens-bts-bonded-hb
      platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb
-     platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb)
+     platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb
+     platens-ucs-hb-shear-energy platens-ucs-hb-shear-energy-bonded platens-ucs-hb-shear-energy-ratio)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done

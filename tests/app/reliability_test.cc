@@ -405,7 +405,7 @@ TEST(BadInput, EveryRangeCheckNamesItsKeyAndTheAcceptedRange)
     {"Rock/Residual fraction=1.5", {"Rock/Residual fraction", "[0, 1]"}},
     {"Rock/Softening law=energy", {"Rock/Softening law", "fracture energy"}},
     {"Rock/Fracture energy=0", {"Rock/Fracture energy", "(0, 1e6) J/m^2"}},
-    {"Rock/Shear fracture energy ratio=0.5", {"Rock/Shear fracture energy ratio", "[1, 100]"}},
+    {"Rock/Shear fracture energy ratio=0.5", {"Rock/Shear fracture energy ratio", "[1, 1000]"}},
     {"SPH/CSLH=3", {"SPH/CSLH"}},
     {"SPH/Hourglass coefficient=2", {"SPH/Hourglass coefficient", "[0, 1]"}},
     {"SPH/Threads=-1", {"SPH/Threads", "[0, 4096]"}},

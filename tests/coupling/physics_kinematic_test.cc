@@ -428,6 +428,39 @@ TEST(CoupledKinematic, HoekBrownBondedPlatensGiveTheFeReferencePeakAndEndFace)
   }
 }
 
+TEST(CoupledKinematic, SofteningUnderFrictionHeldEndsConvergesWithAShearFaultsFractureEnergy)
+{
+  // The cases' rock softening by the crack band between rigid platens with end friction 0.3, its
+  // shear and crushing returns dissipating a shear fault's G_II = 100 G_I = 1e4 J/m^2 (Wong
+  // 1982): the band (2 dx) is then narrower than 2 E G_II / UCS^2 = 24 mm and compressive failure
+  // is regularised. Measured 270.80 / 270.68 MPa at 2.5 / 1.25 mm (5 mm: 270.69). With the
+  // default G_II = 6.25 G_I (that limit 1.5 mm: every band snaps back) 262.65 / 257.28 / 238.76
+  // at 5 / 2.5 / 1.25 mm, with the strain law 269.16 / 268.74 / 243.09: neither converges
+  // (cases/studies/platens/README.md). 2.5 and 1.25 mm: where the others part (160 s).
+  const std::vector<std::string> crack_band{"Rock/Softening law=fracture energy",
+                                            "Rock/Shear fracture energy ratio=100",
+                                            "Platens/Friction coefficient=0.3"};
+  std::array<double, 2> softening{};
+  const char *spacing[] = {"SPH/Particle spacing=0.0025", "SPH/Particle spacing=0.00125"};
+  for (int k = 0; k < 2; ++k)
+  {
+    std::vector<std::string> s = crack_band;
+    s.push_back(spacing[k]);
+    softening[k] = peak(default_case("ucs/ucs.prm", s));
+  }
+  const double plastic = peak(perfectly_plastic_ucs({"Platens/Friction coefficient=0.3"}, true));
+  std::cout << "[held ends, crack band] " << softening[0] / 1e6 << " / " << softening[1] / 1e6
+            << " MPa at 2.5 / 1.25 mm; perfectly plastic " << plastic / 1e6 << " MPa\n";
+  // 1 %: the convergence asked of a quoted peak (measured -0.04 %)
+  EXPECT_NEAR(softening[1] / softening[0], 1.0, 0.01);
+  // 1 %: the rock softens so gradually at this G_II that the specimen's peak is its perfectly
+  // plastic limit (271.18 MPa at 2.5 mm, within the FE reference's bonded and free-slip peaks,
+  // the test above; measured -0.14 %); a peak that collapsed with the spacing, as the default
+  // G_II's, falls 2-12 % short
+  EXPECT_NEAR(softening[0] / plastic, 1.0, 0.01);
+  EXPECT_LE(softening[0], plastic * 1.001);
+}
+
 TEST(CoupledKinematic, ElasticPlatensOfTheSpecimensDiameterOnRollersGiveTheUniaxialClosedForm)
 {
   // Steel platens as wide as the specimen, frictionless on the rock and pushed by lubricated
