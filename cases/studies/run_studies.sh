@@ -117,6 +117,9 @@ run() {
                     --vary "Platens/Friction coefficient=0,0.1,0.3" "${spacings[@]}" ;;
     platens-ucs-hb-shear-energy-bonded) unpinned platens-ucs-hb-shear-energy-bonded $ucs "${shear[@]}" \
                     --set "Platens/Bonded=true" --vary "Platens/Model=rigid,elastic" "${spacings[@]}" ;;
+    platens-ucs-hb-shear-energy-length) unpinned platens-ucs-hb-shear-energy-length $ucs "${shear[@]}" \
+                    --set "Platens/Friction coefficient=0.3" --vary "Platens/Model=rigid,elastic" \
+                    --vary "Test/Length=0.05,0.1,0.125" --vary "SPH/Particle spacing=0.0025,0.00125" ;;
     platens-ucs-hb-shear-energy-ratio) unpinned platens-ucs-hb-shear-energy-ratio $ucs "${shear[@]}" \
                     --set "Platens/Friction coefficient=0.3" \
                     --vary "Rock/Shear fracture energy ratio=6.25,25,100,400" \
@@ -298,7 +301,8 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-wide-fitted-bonded platens-ucs-hb platens-ucs-bonded-hb platens-bts-hb platens-bts-bonded-hb
      platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb
      platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb
-     platens-ucs-hb-shear-energy platens-ucs-hb-shear-energy-bonded platens-ucs-hb-shear-energy-ratio)
+     platens-ucs-hb-shear-energy platens-ucs-hb-shear-energy-bonded platens-ucs-hb-shear-energy-ratio
+     platens-ucs-hb-shear-energy-length)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
