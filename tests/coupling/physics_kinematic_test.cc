@@ -436,7 +436,7 @@ TEST(CoupledKinematic, SofteningUnderFrictionHeldEndsConvergesWithAShearFaultsFr
   // is regularised. Measured 270.80 / 270.68 MPa at 2.5 / 1.25 mm (5 mm: 270.69). With the
   // default G_II = 6.25 G_I (that limit 1.5 mm: every band snaps back) 262.65 / 257.28 / 238.76
   // at 5 / 2.5 / 1.25 mm, with the strain law 269.16 / 268.74 / 243.09: neither converges
-  // (cases/studies/platens/README.md). 2.5 and 1.25 mm: where the others part (160 s).
+  // (cases/studies/platens/README.md). 2.5 and 1.25 mm, where the others part: 200-240 s.
   const std::vector<std::string> crack_band{"Rock/Softening law=fracture energy",
                                             "Rock/Shear fracture energy ratio=100",
                                             "Platens/Friction coefficient=0.3"};
