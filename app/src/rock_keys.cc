@@ -121,8 +121,8 @@ namespace app::keys
       "Shear fracture energy ratio", m.shear_fracture_energy_ratio,
       "G_II / G_I [-]: the fracture energy of shear and crushing returns over Rock/Fracture "
       "energy; 6.25 = 2.5^2, rock's K_IIc being 2-3 K_Ic (Rao 1999; Backers et al. 2002); a "
-      "shear fault's energy, about 1e4 J/m^2 (Wong 1982), is 100, the least with which the "
-      "crack band regularises compressive failure at practical spacings (docs/design.md)",
+      "shear fault's energy, about 1e4 J/m^2 (Wong 1982), is 100: with it the crack band "
+      "regularises compressive failure too at spacings below 12 mm (docs/design.md)",
       [](double v) { return v >= 1 && v <= 1000; }, "must be in [1, 1000]");
     s.add<double>("Residual fraction", m.residual_fraction, "residual / peak strength [-]",
                   [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1]");

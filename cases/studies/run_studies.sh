@@ -36,7 +36,7 @@ fitted_rollers=("${rollers[@]}" "${fitted[@]}")
 grid=(--vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 plastic=(--set "Rock/Residual fraction=1" --set "Loading/End strain=0.005") # no softening
 # the crack band with a shear fault's fracture energy (G_II = 100 G_I = 1e4 J/m^2, Wong 1982):
-# compressive failure regularised at every spacing below 19 mm (2 E G_II / UCS^2 = 24 mm)
+# compressive failure regularised at spacings below 12 mm (a band of 2 dx under 2 E G_II / UCS^2 = 24 mm)
 shear=(--set "Rock/Softening law=fracture energy" --set "Rock/Shear fracture energy ratio=100")
 spacings=(--vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
