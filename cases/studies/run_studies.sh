@@ -211,6 +211,10 @@ run() {
                     "${het[@]}" --set "Rock/Cohesion=5.00875e+07" --set "Rock/Friction angle=68.2224" \
                     --set "SPH/Particle spacing=0.00125" --vary "Platens/Friction coefficient=0,0.3" \
                     --vary "Rock/Scatter seed=1,2,3" ;;
+    # the heterogeneous rock (Table 4's c, phi) with a shear fault's G_II: end friction at two spacings
+    heterogeneous-ucs-shear-energy) study heterogeneous-ucs-shear-energy $ucs "${het[@]}" \
+                    --set "Rock/Shear fracture energy ratio=100" --vary "Platens/Friction coefficient=0,0.3" \
+                    --vary "SPH/Particle spacing=0.0025,0.00125" --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-ucs-bonded) study heterogeneous-ucs-bonded $ucs "${het[@]}" --set "Platens/Bonded=true" \
                     --vary "Test/Length=0.05,0.1,0.125" --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-bts-spacing) study heterogeneous-bts-spacing $bts "${het[@]}" \
@@ -302,7 +306,7 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb
      platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb
      platens-ucs-hb-shear-energy platens-ucs-hb-shear-energy-bonded platens-ucs-hb-shear-energy-ratio
-     platens-ucs-hb-shear-energy-length)
+     platens-ucs-hb-shear-energy-length heterogeneous-ucs-shear-energy)
 for name in "${@:-${all[@]}}"; do
   run "$name"
 done
