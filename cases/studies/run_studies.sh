@@ -32,13 +32,13 @@ steel=(--set "Platens/Model=elastic")
 rollers=("${steel[@]}" --set "Platens/Diameter=0.05" --set "Platens/Loaded face=roller")
 fitted=(--set "SPH/Particle arrangement=body-fitted")
 fitted_rollers=("${rollers[@]}" "${fitted[@]}")
+spacings=(--vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 # every spacing with the coarser meshes (elements finer than the particles are refused)
-grid=(--vary "Platens/Element size=0.01,0.005" --vary "SPH/Particle spacing=0.005,0.0025,0.00125")
+grid=(--vary "Platens/Element size=0.01,0.005" "${spacings[@]}")
 plastic=(--set "Rock/Residual fraction=1" --set "Loading/End strain=0.005") # no softening
 # the crack band with a shear fault's fracture energy (G_II = 100 G_I = 1e4 J/m^2, Wong 1982):
 # compressive failure regularised at spacings below 12 mm (a band of 2 dx under 2 E G_II / UCS^2 = 24 mm)
 shear=(--set "Rock/Softening law=fracture energy" --set "Rock/Shear fracture energy ratio=100")
-spacings=(--vary "SPH/Particle spacing=0.005,0.0025,0.00125")
 if [ -n "${SPACING:-}" ]; then quick+=(--set "SPH/Particle spacing=$SPACING"); fi
 eval "extra=(${EXTRA:-})" # keys with spaces stay one word
 
@@ -107,10 +107,10 @@ run() {
     # that rock perfectly plastic (as cosim reference's) at three spacings: end friction on rigid
     # platens, bonded rigid and elastic platens
     platens-ucs-hb-plastic) unpinned platens-ucs-hb-plastic $ucs "${plastic[@]}" \
-                    --vary "Platens/Friction coefficient=0,0.1,0.3" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Platens/Friction coefficient=0,0.1,0.3" "${spacings[@]}" ;;
     platens-ucs-hb-plastic-bonded) unpinned platens-ucs-hb-plastic-bonded $ucs "${plastic[@]}" \
                     --set "Platens/Bonded=true" --vary "Platens/Model=rigid,elastic" \
-                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    "${spacings[@]}" ;;
     # that rock softening by the crack band with a shear fault's G_II at three spacings: end
     # friction on rigid platens, bonded rigid and elastic platens, G_II / 4 and x 4
     platens-ucs-hb-shear-energy) unpinned platens-ucs-hb-shear-energy $ucs "${shear[@]}" \
@@ -187,7 +187,7 @@ run() {
     # heterogeneous rock (cases/studies/README.md): Weibull scatter m = 10 on 5 mm cells fixed in
     # space, crack-band softening; its convergence in spacing, then end friction and slenderness
     heterogeneous-ucs-spacing) study heterogeneous-ucs-spacing $ucs "${het[@]}" \
-                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" --vary "Rock/Scatter seed=1,2,3" ;;
+                    "${spacings[@]}" --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-ucs-1mm) study heterogeneous-ucs-1mm $ucs "${het[@]}" --set "SPH/Particle spacing=0.001" \
                     --vary "Rock/Scatter seed=1,2,3" ;;
     heterogeneous-ucs-platens) study heterogeneous-ucs-platens $ucs "${het[@]}" \
@@ -229,7 +229,7 @@ run() {
     # the same rock with the strain softening law: the heterogeneous specimen does not converge
     heterogeneous-ucs-strain-softening) study heterogeneous-ucs-strain-softening $ucs \
                     --set "Rock/Strength scatter=10" --set "Rock/Scatter length=0.005" \
-                    --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    "${spacings[@]}" ;;
     # elastic steel platens (60 mm wide, clamped to the rams) on the heterogeneous rock: end
     # friction and bonded ends, and the platen mesh (frictionless)
     heterogeneous-ucs-elastic-platens) study heterogeneous-ucs-elastic-platens $ucs "${het[@]}" \
@@ -243,7 +243,7 @@ run() {
     # steel platens of the specimen's diameter on rollers (uniaxial throughout), perfectly plastic
     # and with the default softening: spacing with the elements at two spacings, and the mesh
     platens-rollers-spacing) study platens-rollers-spacing $ucs "${rollers[@]}" \
-                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Rock/Residual fraction=1,0.1" "${spacings[@]}" ;;
     # the same platens 0.5 to 2 mm wider than the specimen (ISRM allows up to D + 2 mm)
     platens-rollers-overhang) study platens-rollers-overhang $ucs "${steel[@]}" \
                     --set "Platens/Loaded face=roller" --vary "Rock/Residual fraction=1,0.1" \
@@ -252,7 +252,7 @@ run() {
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     # the same on the body-fitted specimen (its side round: no staircase against the platen's rim)
     platens-rollers-spacing-fitted) study platens-rollers-spacing-fitted $ucs "${fitted_rollers[@]}" \
-                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Rock/Residual fraction=1,0.1" "${spacings[@]}" ;;
     platens-rollers-mesh-fitted) study platens-rollers-mesh-fitted $ucs "${fitted_rollers[@]}" \
                     --vary "Rock/Residual fraction=1,0.1" --vary "Platens/Element size=0.01,0.005,0.0025" ;;
     platens-rollers-patch-fitted) study platens-rollers-patch-fitted $ucs "${fitted_rollers[@]}" \
@@ -270,19 +270,19 @@ run() {
     # wider platens on the body-fitted specimen (ISRM: up to D + 2 mm), at three spacings
     platens-rollers-overhang-fitted) study platens-rollers-overhang-fitted $ucs "${steel[@]}" "${fitted[@]}" \
                     --set "Platens/Loaded face=roller" \
-                    --vary "Platens/Diameter=0.051,0.052" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Platens/Diameter=0.051,0.052" "${spacings[@]}" ;;
     # the default steel platens (60 mm, clamped, elements of 2 dx) on the body-fitted specimen at
     # three spacings: frictionless (perfectly plastic, strain softening, crack band), with end
     # friction, bonded
     platens-wide-fitted) study platens-wide-fitted $ucs "${steel[@]}" "${fitted[@]}" \
-                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Rock/Residual fraction=1,0.1" "${spacings[@]}" ;;
     platens-wide-fitted-crack-band) study platens-wide-fitted-crack-band $ucs "${steel[@]}" "${fitted[@]}" \
-                    --set "Rock/Softening law=fracture energy" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --set "Rock/Softening law=fracture energy" "${spacings[@]}" ;;
     platens-wide-fitted-friction) study platens-wide-fitted-friction $ucs "${steel[@]}" "${fitted[@]}" \
-                    --vary "Platens/Friction coefficient=0.1,0.3" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Platens/Friction coefficient=0.1,0.3" "${spacings[@]}" ;;
     platens-wide-fitted-bonded) study platens-wide-fitted-bonded $ucs "${steel[@]}" "${fitted[@]}" \
                     --set "Platens/Bonded=true" \
-                    --vary "Rock/Residual fraction=1,0.1" --vary "SPH/Particle spacing=0.005,0.0025,0.00125" ;;
+                    --vary "Rock/Residual fraction=1,0.1" "${spacings[@]}" ;;
     *) echo "unknown study $1" >&2; return 2 ;;
   esac
 }
