@@ -183,8 +183,9 @@ namespace sph
       // the corrected particles more strongly than their own weights and the iteration oscillates
       // apart (h = 1.4 dx on). Then the same conditions are solved as the linear system they are:
       // sum_(j own) (w_aj - m_j) A_j = t - c_a, with c the fixed particles' share of a sum, m_j
-      // and t the mean over the target rings of w_bj and of c_b.
-      const std::vector<RingPoint> original = layer;
+      // and t the mean over the target rings of w_bj and of c_b. The iteration stays first where
+      // it converges: the volumes it gives are those of every stored result. It changes only the
+      // unknowns' areas, so the fixed particles' c are the same for the system.
       for (int it = 0; it < 1000; ++it)
         {
           std::vector<double> sum(all.size(), 0.0);
@@ -204,7 +205,6 @@ namespace sph
           for (std::size_t a = 0; a < own.size(); ++a)
             layer[own[a]].area *= target / sum[a];
         }
-      layer = original;
       const std::size_t n = own.size();
       std::vector<std::size_t> column(layer.size(), n); // layer index -> unknown (n: fixed)
       for (std::size_t a = 0; a < n; ++a)

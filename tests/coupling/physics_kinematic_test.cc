@@ -6,6 +6,7 @@
 #include "run_helpers.h"
 
 #include <app/case_file.h>
+#include <coupling/curve_analysis.h>
 #include <coupling/reference_cylinder.h>
 #include <coupling/references.h>
 #include <coupling/run_case.h>
@@ -459,6 +460,8 @@ TEST(CoupledKinematic, SofteningUnderFrictionHeldEndsConvergesWithAShearFaultsFr
   // the test above; measured -0.14 %); a peak that collapsed with the spacing, as the default
   // G_II's, falls 2-12 % short
   EXPECT_NEAR(softening[0] / plastic, 1.0, 0.01);
+  // and not above it: softening only takes strength away; 0.1 % for the two runs' different
+  // step sequences through the same explicit loading (measured 0.14 % below)
   EXPECT_LE(softening[0], plastic * 1.001);
 }
 
@@ -473,23 +476,16 @@ TEST(CoupledKinematic, AShortBondedCylinderCarriesTheFeReferencesConfinedCore)
   p.loading.end_strain = 0.008;
   Keep rows;
   run_case(p, rows);
-  ReferenceOptions o;
-  o.interface             = ReferenceInterface::bonded;
-  o.platens               = ReferencePlatens::rigid;
-  o.n_radial              = 8;
-  o.n_increments          = 80;
-  o.end_strain            = 0.008;
-  const ReferenceResult r = run_reference_cylinder(p, o);
+  const ReferenceResult r = bonded_reference(p, ReferencePlatens::rigid, 80, 0.008);
   ASSERT_TRUE(r.complete()) << r.end_reason;
-  // stress at strain e, linear between rows
+  // stress at strain e, linear between rows: where the (rising) strain first reaches e
   const auto at = [](const auto &curve, const double e) {
-    for (std::size_t k = 1; k < curve.size(); ++k)
-      if (curve[k].strain >= e)
-      {
-        const double w = (e - curve[k - 1].strain) / (curve[k].strain - curve[k - 1].strain);
-        return (1 - w) * curve[k - 1].stress + w * curve[k].stress;
-      }
-    return std::nan("");
+    std::vector<double> strain, stress;
+    for (const auto &row : curve)
+      strain.push_back(row.strain), stress.push_back(row.stress);
+    double s = std::nan("");
+    EXPECT_TRUE(crossing(stress, strain, e, s)) << "the curve ends before strain " << e;
+    return s;
   };
   const double sigma_ci = p.rock.hb_sigma_ci * std::pow(p.rock.hb_s, p.rock.hb_a);
   for (const double e : {0.003, 0.004, 0.0053, 0.0075})
