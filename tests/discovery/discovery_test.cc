@@ -139,6 +139,56 @@ namespace
     return r;
   }
 
+  /// What a data folder itself says about the size effect, by a regression that shares nothing
+  /// with diagnose: ln q = ln q0 - ln(V / V_ref) / m over the uniaxial curves' peaks and the UCS
+  /// rows (V_ref = a 50 x 100 mm core), m's standard error by the delta method from the slope's,
+  /// the scatter from the regression's own residuals [-].
+  struct SizeFromData
+  {
+    double m = 0, se = 0;
+  };
+
+  SizeFromData size_from_data(const std::string &dir)
+  {
+    std::vector<double> x, y; // ln volume ratio, ln uniaxial strength
+    std::ifstream strength(dir + "/strength.csv");
+    for (std::string line; std::getline(strength, line);)
+      if (line.rfind("UCS,", 0) == 0)
+      {
+        x.push_back(0);
+        y.push_back(std::log(std::stod(line.substr(line.find(',', 4) + 1))));
+      }
+    for (const auto &e : std::filesystem::directory_iterator(dir + "/curves"))
+    {
+      std::ifstream c(e.path());
+      double D = 0, L = 0, f_max = 0;
+      for (std::string line; std::getline(c, line);)
+        if (line.rfind("# diameter_mm:", 0) == 0)
+          D = std::stod(line.substr(14));
+        else if (line.rfind("# length_mm:", 0) == 0)
+          L = std::stod(line.substr(12));
+        else if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])))
+          f_max = std::max(f_max, std::stod(line.substr(line.rfind(',') + 1)));
+      x.push_back(std::log(D * D * L / (50.0 * 50.0 * 100.0)));
+      y.push_back(std::log(f_max * 1e3 / (3.14159265358979323846 * D * D / 4)));
+    }
+    const double n  = static_cast<double>(x.size());
+    const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n;
+    const double my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+    double sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      sxx += (x[i] - mx) * (x[i] - mx);
+      sxy += (x[i] - mx) * (y[i] - my);
+    }
+    const double slope = sxy / sxx;
+    double ss          = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      ss += std::pow(y[i] - my - slope * (x[i] - mx), 2);
+    const double se_slope = std::sqrt(ss / (n - 2) / sxx);
+    return {-1 / slope, se_slope / (slope * slope)};
+  }
+
   double parameter(const Diagnosis &d, const std::string &name)
   {
     for (const auto &v : d.extended_parameters)
@@ -331,6 +381,16 @@ TEST(Discovery, Heterogeneity)
     report("heterogeneity", seed, d, "weibull_m", t.weibull_m);
     EXPECT_EQ(d.identified, std::vector<std::string>{"heterogeneity"}) << "seed " << seed;
     EXPECT_NEAR(parameter(d, "weibull_m"), t.weibull_m, 0.1 * t.weibull_m) << "seed " << seed;
+    const auto data = size_from_data(folder("heterogeneity", seed));
+    std::cout << "[ result ] heterogeneity seed " << seed << ": from the data alone weibull_m "
+              << data.m << " +- " << data.se << '\n';
+    // diagnose's fit and standard error are the data's: its q0 also feels the BTS and CTCS rows
+    // through c and phi (seeds 1-40: within 0.47 of the regression's standard error), and its
+    // scatter is pooled over replicates (about 20 degrees of freedom) where the regression takes
+    // its 13 residuals' (standard-error ratio 0.72-1.29 on seeds 1-40)
+    EXPECT_NEAR(parameter(d, "weibull_m"), data.m, 0.6 * data.se) << "seed " << seed;
+    EXPECT_GT(standard_error(d, "weibull_m"), 0.65 * data.se) << "seed " << seed;
+    EXPECT_LT(standard_error(d, "weibull_m"), 1.5 * data.se) << "seed " << seed;
     EXPECT_GE(d.discrepancy_gain, 5.0) << "seed " << seed;
   }
 }
@@ -344,9 +404,13 @@ TEST(Discovery, Heterogeneity)
 // pair its standard error comes out a little small. Over all 126 the standard errors cover the
 // truth near their nominal rates: 62 / 92 / 98 % within 1 / 2 / 3 of them (a normal error: 68
 // / 95 / 99.7 %); by parameter the RMS of error / SE is 0.38 (T0_A, conservative) to 1.64
-// (weibull_m: its standard error some 40 % small). The test requires 85 % within two (with 126
-// estimates the nominal 95 % has a binomial spread of 2 %; 85 % leaves room for the seeds'
-// correlation).
+// (weibull_m). That 1.64 is three draws, not 18: a seed's size-effect data are nearly the same
+// in each of its six pairs (seed 1: +5.8 %, 2.5 SE, in every pair), and the standard error is
+// the data's (Discovery.Heterogeneity checks it against a regression of the data's peaks; that
+// regression's error over its standard error has an RMS of 1.07 over seeds 1-300 of the
+// generator, 1.09 expected of 13 residuals, but 1.29 over seeds 1-40). The test requires 85 %
+// within two (with 126 estimates the nominal 95 % has a binomial spread of 2 %; 85 % leaves
+// room for the seeds' correlation).
 // Where a curved envelope is hidden beside rate, friction or heterogeneity, a cut-off is
 // sometimes named as well (5 of 63 data sets name three effects); that is allowed here, since
 // both hidden effects are still named.
