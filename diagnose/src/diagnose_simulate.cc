@@ -349,8 +349,13 @@ namespace diagnose
     // and it is the simulator's at the spacing it is fitted at (strength and brittleness fitted
     // there, held-out specimens run there)
     const double het_spacing = std::max(options.coupled_spacing, 5e-3);
-    // a heterogeneous rock's fit: rock -> (characteristic length, strength scale)
-    std::map<std::string, std::pair<double, double>> fits;
+    // a heterogeneous rock's fit: its characteristic length [m], strength scale and the
+    // simulator's friction coefficient
+    struct RockFit
+    {
+      double l = 0, k = 0, mu = 0;
+    };
+    std::map<std::string, RockFit> fits;
     std::map<std::string, FitUnstable> stopped; // the fits that a run's instability stopped
     double last_l = 0; // the last fitted characteristic length [m] (the next fit starts there)
     const auto run = [&](const SimulatorTarget &t, SimulatedRock r, const double dx) {
@@ -392,10 +397,12 @@ namespace diagnose
           try
           {
             const double target = fit_l ? r.short_peak / r.calibration_peak : 1.0;
-            std::map<double, std::pair<double, double>> peaks; // log l -> standard, short
+            std::map<std::pair<double, double>, std::pair<double, double>> peaks; // (log l, mu) -> standard, short
+            double mu = r.friction; // the model's; lowered only where no l reaches the ratio
             const auto ratio_at = [&](const double log_l) {
               SimulatedRock x         = unit;
               x.characteristic_length = std::exp(log_l);
+              x.friction              = mu;
               const SimulatedRun sa = mean_run(standard, x, dx_standard);
               const SimulatedRun sb = fit_l ? mean_run(shortest, x, dx_short) : sa;
               for (const SimulatedRun *u : {&sa, &sb})
@@ -409,7 +416,7 @@ namespace diagnose
               if (!(a > 0 && b > 0))
                 throw std::runtime_error("diagnose: the heterogeneous rock's specimens carried no "
                                          "load; its brittleness and strengths cannot be fitted");
-              peaks[log_l] = {a, b};
+              peaks[{log_l, mu}] = {a, b};
               return b / a - target;
             };
             // l from just above the snap-back limit of the coarser crack band (l > h / 2) to 1 m:
@@ -440,7 +447,8 @@ namespace diagnose
                 hi = std::min(x_max, hi + std::log(4.0)), f_hi = ratio_at(hi);
               }
               bool found = std::abs(f) < 3e-3 * target;
-              if (!found && f_lo >= 0)
+              const bool too_confined = !found && f_lo >= 0;
+              if (too_confined)
                 x = lo, found = true; // even the most brittle rock is confined too much
               if (!found && f_hi <= 0)
                 x = hi, found = true; // even the most ductile rock is confined too little
@@ -466,13 +474,49 @@ namespace diagnose
                 }
               }
               last_l = std::exp(x);
+              if (too_confined && f_lo >= 3e-3 * target)
+              {
+                // Then the simulator's friction is what reproduces the data's ratio at that l:
+                // the data's mu is Siebel's (the model's), and the simulator's held ends confine
+                // more than Siebel says (frictionless ends give the ratio 1, below the target).
+                // Regula falsi (Illinois) on mu in [0, the model's mu] to the same 0.3 %.
+                double m_lo = 0, m_hi = r.friction, g_hi = f_lo;
+                mu          = m_lo;
+                double g_lo = ratio_at(x);
+                int side_mu  = 0;
+                for (int it = 0; it < 12 && g_lo < 0; ++it)
+                {
+                  mu       = (m_lo * g_hi - m_hi * g_lo) / (g_hi - g_lo);
+                  const double g = ratio_at(x);
+                  if (std::abs(g) < 3e-3 * target)
+                    break;
+                  if (g < 0)
+                  {
+                    m_lo = mu, g_lo = g;
+                    if (side_mu == -1)
+                      g_hi /= 2;
+                    side_mu = -1;
+                  }
+                  else
+                  {
+                    m_hi = mu, g_hi = g;
+                    if (side_mu == 1)
+                      g_lo /= 2;
+                    side_mu = 1;
+                  }
+                }
+              }
             }
-            if (!peaks.count(x))
+            if (!peaks.count({x, mu}))
               ratio_at(x);
-            const auto [a, b] = peaks.at(x);
-            fits[key]         = {std::exp(x), r.calibration_peak / a};
+            const auto [a, b] = peaks.at({x, mu});
+            fits[key]         = {std::exp(x), r.calibration_peak / a, mu};
             out.notes.push_back(
               "coupled simulator: end friction mu " + num(r.friction) +
+              (mu != r.friction ? " (the simulator's " + num(mu) +
+                                    ": even its most brittle rock is confined more at the "
+                                    "model's)"
+                                : std::string()) +
               " on a heterogeneous rock (mean of " + std::to_string(realisations) +
               " rocks) of characteristic length E G_I / f_t^2 = " + num(std::exp(x)) + " m" +
               (fit_l ? ", fitted: its " + num(r.short_diameter) + " x " + num(r.short_length) +
@@ -484,7 +528,7 @@ namespace diagnose
           }
           catch (const FitUnstable &e)
           {
-            fits[key] = {std::nan(""), std::nan("")};
+            fits[key] = {std::nan(""), std::nan(""), std::nan("")};
             stopped[key] = e;
             out.notes.push_back("coupled simulator: the fit of the heterogeneous rock for end "
                                 "friction mu " + num(r.friction) + " stopped, " + e.what +
@@ -501,8 +545,9 @@ namespace diagnose
         }
         else
         {
-          r.characteristic_length = fits[key].first;
-          r.calibration_factor    = fits[key].second;
+          r.characteristic_length = fits[key].l;
+          r.calibration_factor    = fits[key].k;
+          r.friction              = fits[key].mu;
           result                  = mean_run(t, r, spacing_of(t, het_spacing));
         }
       }
