@@ -483,10 +483,10 @@ namespace diagnose
                 double m_lo = 0, m_hi = r.friction, g_hi = f_lo;
                 mu          = m_lo;
                 double g_lo = ratio_at(x);
-                int side_mu  = 0;
+                int side_mu = 0;
                 for (int it = 0; it < 12 && g_lo < 0; ++it)
                 {
-                  mu       = (m_lo * g_hi - m_hi * g_lo) / (g_hi - g_lo);
+                  mu             = (m_lo * g_hi - m_hi * g_lo) / (g_hi - g_lo);
                   const double g = ratio_at(x);
                   if (std::abs(g) < 3e-3 * target)
                     break;
