@@ -439,8 +439,9 @@ TEST(CoupledKinematic, SofteningUnderFrictionHeldEndsConvergesWithAShearFaultsFr
   // default G_II = 6.25 G_I (that limit 1.5 mm: every band snaps back) 262.65 / 257.28 / 238.76
   // at 5 / 2.5 / 1.25 mm, with the strain law 269.16 / 268.74 / 243.09: neither converges
   // (cases/studies/platens/README.md). 2.5 and 1.25 mm, where the others part: 200-240 s.
-  // Finer, this law holds to 1 mm (270.45 MPa) but falls to 246.23 at 0.8 mm (frictionless there
-  // 283.40, bonded 268.82; not yet explained): the test checks the range it was measured over.
+  // Finer, this law holds to 1 mm (270.45 MPa) but falls to 246.23 at 0.8 mm (frictionless at 0.83
+  // mm 283.40, bonded at 0.8 mm 268.82; not yet explained): the test checks the range it was
+  // measured over.
   const std::vector<std::string> crack_band{"Rock/Softening law=fracture energy",
                                             "Rock/Shear fracture energy ratio=100",
                                             "Platens/Friction coefficient=0.3"};
