@@ -37,6 +37,34 @@ namespace diagnose
       return std::min(dx, std::min(t.diameter, t.length) * 1e-3 / 10.0);
     }
 
+    /// A regula falsi bracket of a root, f(lo) <= 0 <= f(hi), moved by the Illinois rule (the end
+    /// kept twice in a row has its value halved).
+    struct Illinois
+    {
+      double lo, f_lo, hi, f_hi;
+      int side = 0;
+
+      double next() const { return (lo * f_hi - hi * f_lo) / (f_hi - f_lo); }
+
+      void update(const double x, const double f)
+      {
+        if (f < 0)
+        {
+          lo = x, f_lo = f;
+          if (side == -1)
+            f_hi /= 2;
+          side = -1;
+        }
+        else
+        {
+          hi = x, f_hi = f;
+          if (side == 1)
+            f_lo /= 2;
+          side = 1;
+        }
+      }
+    };
+
     /// Rocks of a heterogeneous case whose mean is its result (Rock/Scatter seed 1, 2, 3): one
     /// rock's end-friction effect on a short specimen moves by +-5 % (seed 1-3, mu 0.32, L/D 1/2,
     /// G_I 100 J/m^2: 1.085 / 1.191 / 1.169 x its standard specimen, measured with hourglass
@@ -452,26 +480,13 @@ namespace diagnose
                 x = lo, found = true; // even the most brittle rock is confined too much
               if (!found && f_hi <= 0)
                 x = hi, found = true; // even the most ductile rock is confined too little
-              int side = 0;
+              Illinois on_l{lo, f_lo, hi, f_hi};
               for (int it = 0; !found && it < 12; ++it)
               {
-                x     = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+                x     = on_l.next();
                 f     = ratio_at(x);
-                found = std::abs(f) < 3e-3 * target || hi - lo < 1e-3;
-                if (f < 0)
-                {
-                  lo = x, f_lo = f;
-                  if (side == -1)
-                    f_hi /= 2;
-                  side = -1;
-                }
-                else
-                {
-                  hi = x, f_hi = f;
-                  if (side == 1)
-                    f_lo /= 2;
-                  side = 1;
-                }
+                found = std::abs(f) < 3e-3 * target || on_l.hi - on_l.lo < 1e-3;
+                on_l.update(x, f);
               }
               last_l = std::exp(x);
               if (too_confined && f_lo >= 3e-3 * target)
@@ -480,30 +495,15 @@ namespace diagnose
                 // the data's mu is Siebel's (the model's), and the simulator's held ends confine
                 // more than Siebel says (frictionless ends give the ratio 1, below the target).
                 // Regula falsi (Illinois) on mu in [0, the model's mu] to the same 0.3 %.
-                double m_lo = 0, m_hi = r.friction, g_hi = f_lo;
-                mu          = m_lo;
-                double g_lo = ratio_at(x);
-                int side_mu = 0;
-                for (int it = 0; it < 12 && g_lo < 0; ++it)
+                mu = 0;
+                Illinois on_mu{0, ratio_at(x), r.friction, f_lo};
+                for (int it = 0; it < 12 && on_mu.f_lo < 0; ++it)
                 {
-                  mu             = (m_lo * g_hi - m_hi * g_lo) / (g_hi - g_lo);
+                  mu             = on_mu.next();
                   const double g = ratio_at(x);
                   if (std::abs(g) < 3e-3 * target)
                     break;
-                  if (g < 0)
-                  {
-                    m_lo = mu, g_lo = g;
-                    if (side_mu == -1)
-                      g_hi /= 2;
-                    side_mu = -1;
-                  }
-                  else
-                  {
-                    m_hi = mu, g_hi = g;
-                    if (side_mu == 1)
-                      g_lo /= 2;
-                    side_mu = 1;
-                  }
+                  on_mu.update(mu, g);
                 }
               }
             }

@@ -64,6 +64,31 @@ namespace
     return diagnose::diagnose(read_data(dir), Options{});
   }
 
+  /// A load-frame curve of a data folder, read by the test itself (not diagnose's reader).
+  struct CurvePeak
+  {
+    double diameter, length, force; ///< [mm], [mm], the largest force [kN]
+  };
+
+  std::vector<CurvePeak> curve_peaks(const std::string &dir)
+  {
+    std::vector<CurvePeak> out;
+    for (const auto &e : std::filesystem::directory_iterator(dir + "/curves"))
+    {
+      std::ifstream c(e.path());
+      CurvePeak p{0, 0, 0};
+      for (std::string line; std::getline(c, line);)
+        if (line.rfind("# diameter_mm:", 0) == 0)
+          p.diameter = std::stod(line.substr(14));
+        else if (line.rfind("# length_mm:", 0) == 0)
+          p.length = std::stod(line.substr(12));
+        else if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])))
+          p.force = std::max(p.force, std::stod(line.substr(line.rfind(',') + 1)));
+      out.push_back(p);
+    }
+    return out;
+  }
+
   /// What a data folder itself says about platen friction, by a moment estimate that shares
   /// nothing with diagnose: the ratio R of the mean uniaxial strength of the short specimens
   /// (curves of the smallest L/D) to that of the standard ones (UCS rows and curves at L/D = 2),
@@ -93,17 +118,8 @@ namespace
     }
     double k_short = 0, ld_short = 1e9;
     std::map<std::string, double> k_of{{slenderness(2), 1.0 / 6.0}};
-    for (const auto &e : std::filesystem::directory_iterator(dir + "/curves"))
+    for (const auto &[D, L, f_max] : curve_peaks(dir))
     {
-      std::ifstream c(e.path());
-      double D = 0, L = 0, f_max = 0;
-      for (std::string line; std::getline(c, line);)
-        if (line.rfind("# diameter_mm:", 0) == 0)
-          D = std::stod(line.substr(14));
-        else if (line.rfind("# length_mm:", 0) == 0)
-          L = std::stod(line.substr(12));
-        else if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])))
-          f_max = std::max(f_max, std::stod(line.substr(line.rfind(',') + 1)));
       const std::string key = slenderness(L / D);
       groups[key].push_back(f_max * 1e3 / (3.14159265358979323846 * D * D / 4));
       k_of[key] = D / (3 * L);
@@ -158,17 +174,8 @@ namespace
         x.push_back(0);
         y.push_back(std::log(std::stod(line.substr(line.find(',', 4) + 1))));
       }
-    for (const auto &e : std::filesystem::directory_iterator(dir + "/curves"))
+    for (const auto &[D, L, f_max] : curve_peaks(dir))
     {
-      std::ifstream c(e.path());
-      double D = 0, L = 0, f_max = 0;
-      for (std::string line; std::getline(c, line);)
-        if (line.rfind("# diameter_mm:", 0) == 0)
-          D = std::stod(line.substr(14));
-        else if (line.rfind("# length_mm:", 0) == 0)
-          L = std::stod(line.substr(12));
-        else if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0])))
-          f_max = std::max(f_max, std::stod(line.substr(line.rfind(',') + 1)));
       x.push_back(std::log(D * D * L / (50.0 * 50.0 * 100.0)));
       y.push_back(std::log(f_max * 1e3 / (3.14159265358979323846 * D * D / 4)));
     }
