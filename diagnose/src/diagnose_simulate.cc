@@ -497,6 +497,8 @@ namespace diagnose
                 // Regula falsi (Illinois) on mu in [0, the model's mu] to the same 0.3 %.
                 mu = 0;
                 Illinois on_mu{0, ratio_at(x), r.friction, f_lo};
+                // (its lower end stays below the target once it is: frictionless ends at or
+                // above it leave mu 0, nothing lower to look for)
                 for (int it = 0; it < 12 && on_mu.f_lo < 0; ++it)
                 {
                   mu             = on_mu.next();

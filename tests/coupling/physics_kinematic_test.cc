@@ -443,7 +443,7 @@ TEST(CoupledKinematic, SofteningUnderFrictionHeldEndsConvergesWithAShearFaultsFr
   // a particle cracked to its residual at a staircase step under the held end is pushed out by its
   // loaded neighbours and the rim fails around it. Body-fitted rings have no step and converge:
   // 271.62 / 271.12 / 270.93 / 270.60 MPa at 2.5 / 1.25 / 1 / 0.83 mm (0.83 mm: 16 minutes, too
-  // long here); the test runs their 2.5 mm (about 15 s) against the lattice's 1.25 mm.
+  // long here); the test runs their 2.5 mm (about 30 s on one thread) against the lattice's 1.25 mm.
   const std::vector<std::string> crack_band{"Rock/Softening law=fracture energy",
                                             "Rock/Shear fracture energy ratio=100",
                                             "Platens/Friction coefficient=0.3"};

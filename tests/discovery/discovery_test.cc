@@ -68,6 +68,8 @@ namespace
   struct CurvePeak
   {
     double diameter, length, force; ///< [mm], [mm], the largest force [kN]
+    /// the uniaxial strength: the largest force over the initial section [MPa]
+    double stress() const { return force * 1e3 / (3.14159265358979323846 * diameter * diameter / 4); }
   };
 
   std::vector<CurvePeak> curve_peaks(const std::string &dir)
@@ -118,15 +120,15 @@ namespace
     }
     double k_short = 0, ld_short = 1e9;
     std::map<std::string, double> k_of{{slenderness(2), 1.0 / 6.0}};
-    for (const auto &[D, L, f_max] : curve_peaks(dir))
+    for (const CurvePeak &c : curve_peaks(dir))
     {
-      const std::string key = slenderness(L / D);
-      groups[key].push_back(f_max * 1e3 / (3.14159265358979323846 * D * D / 4));
-      k_of[key] = D / (3 * L);
-      if (L / D < ld_short)
+      const std::string key = slenderness(c.length / c.diameter);
+      groups[key].push_back(c.stress());
+      k_of[key] = c.diameter / (3 * c.length);
+      if (c.length / c.diameter < ld_short)
       {
-        ld_short = L / D;
-        k_short  = D / (3 * L);
+        ld_short = c.length / c.diameter;
+        k_short  = k_of[key];
       }
     }
     double ss = 0, dof = 0;
@@ -174,10 +176,10 @@ namespace
         x.push_back(0);
         y.push_back(std::log(std::stod(line.substr(line.find(',', 4) + 1))));
       }
-    for (const auto &[D, L, f_max] : curve_peaks(dir))
+    for (const CurvePeak &c : curve_peaks(dir))
     {
-      x.push_back(std::log(D * D * L / (50.0 * 50.0 * 100.0)));
-      y.push_back(std::log(f_max * 1e3 / (3.14159265358979323846 * D * D / 4)));
+      x.push_back(std::log(c.diameter * c.diameter * c.length / (50.0 * 50.0 * 100.0)));
+      y.push_back(std::log(c.stress()));
     }
     const double n  = static_cast<double>(x.size());
     const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n;
