@@ -522,7 +522,7 @@ TEST(Calibrate, SimulatedCalibrationOfAHomogeneousRockIsTheClosedFormScale)
 TEST(Calibrate, JointSimulatedCalibrationRecoversTheRockThatMadeItsTargets)
 {
   // The simulator's own UCS and BTS of a rock with c 38 MPa, phi 61 deg (homogeneous, the UCS
-  // cylinder at 5 mm, the disc at its 2.5 mm) are the targets; --with-bts starts from Table 4's
+  // cylinder at 5 mm, the disc at 2.5 mm, for time) are the targets; --with-bts starts from Table 4's
   // M1 (32.99 MPa, 63.68 deg) and must find that rock again. The UCS alone could not: it fixes
   // c for any phi (the UCS-only calibration keeps Table 4's phi).
   Sandbox box;
@@ -533,6 +533,7 @@ TEST(Calibrate, JointSimulatedCalibrationRecoversTheRockThatMadeItsTargets)
   fs::copy_file(source("cases/bts/bts.prm"), bts_mc);
   for (const fs::path &f : {ucs, bts_mc})
     replace_in_file(f, "set Model               = hoek-brown", "set Model               = mohr-coulomb");
+  replace_in_file(bts_mc, "set Particle spacing     = 0.002 ", "set Particle spacing     = 0.0025");
   const std::string bts = bts_mc.string();
   const std::vector<std::string> rock{"--set", "Rock/Cohesion=38e6", "--set", "Rock/Friction angle=61"};
   const double ucs_target = run_peak(box, ucs.string(), "u", rock), bts_target = run_peak(box, bts, "b", rock);
@@ -596,14 +597,17 @@ TEST(Calibrate, CutoffCalibrationRecoversTheCutoffThatMadeItsTarget)
 TEST(Calibrate, MbCalibrationRecoversTheMbThatMadeItsTarget)
 {
   // M1's envelope of a = 1/2 with m_b 16 and no cut-off but its apex gives the default disc (the
-  // flattened body-fitted one at 2.5 mm) a BTS; with that as the target, --mb-from starts at the
-  // closed form's m_b 17.41 (Rock/Strength parameters = envelope) and must find 16 again. The UCS
-  // check runs the cylinder at 5 mm.
+  // flattened body-fitted one, at 2.5 mm for time) a BTS; with that as the target, --mb-from
+  // starts at the closed form's m_b 17.41 (Rock/Strength parameters = envelope) and must find 16
+  // again. The UCS check runs the cylinder at 5 mm.
   Sandbox box;
   const fs::path ucs = box.dir() / "ucs5.prm";
   fs::copy_file(ucs_case, ucs);
   replace_in_file(ucs, "set Particle spacing = 0.0025", "set Particle spacing = 0.005");
-  const std::string bts = source("cases/bts/bts.prm");
+  const fs::path disc = box.dir() / "bts25.prm";
+  fs::copy_file(source("cases/bts/bts.prm"), disc);
+  replace_in_file(disc, "set Particle spacing     = 0.002 ", "set Particle spacing     = 0.0025");
+  const std::string bts = disc.string();
   const double target = run_peak(box, bts, "b",
                                  {"--set", "Rock/Strength parameters=calibrated", "--set", "Rock/Hoek-Brown mi=16",
                                   "--set", "Rock/Hoek-Brown a=0.5", "--set", "Rock/Tensile strength=0"});

@@ -90,11 +90,12 @@ TEST(CaseFile, BtsAndCtcsCasesRead)
   EXPECT_EQ(b.test, "BTS");
   EXPECT_EQ(b.name, "bts"); // Test/Name left empty: the file's stem
   expect_close(b.length, 0.025);
-  // the default disc: the flattened body-fitted one at 2.5 mm (converged there); its Mohr-Coulomb
-  // rock has the c, phi the simulator needs for Table 3 (simulator_calibrated.csv, M1)
+  // the default disc: the flattened body-fitted one at 2 mm (its Hoek-Brown peak within 1 % of
+  // the finer spacings'); its Mohr-Coulomb rock has the c, phi the simulator needs for Table 3
+  // (simulator_calibrated.csv, M1)
   EXPECT_EQ(b.particle_arrangement, sph::ParticleArrangement::body_fitted);
   expect_close(b.flat_angle, 20 * 3.14159265358979323846 / 180);
-  expect_close(b.sph.spacing, 0.0025);
+  expect_close(b.sph.spacing, 0.002);
   EXPECT_EQ(b.rock_case.strength_source, "simulated");
   expect_close(b.rock.cohesion, 36.992e6);
   expect_close(b.rock.friction_angle, 60.548 * 3.14159265358979323846 / 180);

@@ -119,8 +119,8 @@ TEST(CoupledKinematic, BtsSplitsFromTheCentreAtTable3Strength)
 // the simulator's c, phi (simulator_calibrated.csv, calibrated on the same disc at 1.25 mm)
 // against Table 3's BTS, for the groups of the steepest and the flattest of those envelopes
 // (M10: phi 66.1 deg; M1: 60.5 deg). 3 %: the bound Table 3's BTS is asked to hold at the
-// default spacing; measured -1.78 / -1.34 %, the spacing's share (the same disc at 1.25 mm gives
-// Table 3 within the calibration's 0.5 %). With Table 4's c, phi the disc is 18 % low, so the
+// default spacing; measured -2.09 / -1.44 % at 2 mm, the spacing's share (the same disc at 1.25
+// mm gives Table 3 within the calibration's 0.5 %). With Table 4's c, phi the disc is 18 % low, so the
 // rock cannot fall back to them unnoticed. The split runs along the loaded diameter (measured
 // alignment 3.9 / 5.5; M10's failed particles all lie on the loaded diameter, x = 0, at the end:
 // the across spread is their own width, where round-off alone once made it 1e16).
@@ -144,15 +144,16 @@ TEST(CoupledKinematic, DefaultBtsCaseGivesTable3WithTheSimulatorsRock)
 // The default cases' rock, Hoek-Brown with the simulator's envelope (simulator_calibrated.csv):
 // M1 and M4 without triaxial data (a = 1/2, the m_b that calibrate --simulate --mb-from fitted
 // to the BTS on the flattened disc at 1.25 mm, no cut-off but the apex), M10 its triaxial
-// envelope with the cut-off fitted the same way. At the default 2.5 mm: UCS within 1 %
-// (sigma_ci is the UCS; M4's cylinder measured +0.29 %, the loading rate's overshoot); BTS
-// within 3 % for M4 and M10 (measured -1.67 / -2.69 %) and 4 % for M1 (measured -3.74 %): the
-// disc at 2.5 mm lies below its 1.25 mm calibration, M1's 3.8 % (at 1 mm within 0.6 %: study
-// bts-groups-1mm-hb). The split runs along the loaded diameter.
+// envelope with the cut-off fitted the same way. At the default spacings (cylinder 2.5 mm, disc
+// 2 mm): UCS within 1 % (sigma_ci is the UCS; M4's cylinder measured +0.29 %, the loading rate's
+// overshoot); BTS within 2.5 % (measured -0.80 / -1.32 / -1.22 %): the disc at 2 mm lies up to
+// 1.6 % below its 1.25 mm calibration (study bts-groups-hb; M1 14.85 MPa at 2.5 mm, 3.8 % low,
+// would fail this), and the calibration holds Table 3 within 0.5 %. The split runs along the
+// loaded diameter.
 TEST(CoupledKinematic, DefaultCasesGiveTable3WithTheirHoekBrownRock)
 {
-  for (const auto &[group, bts, tolerance] :
-       {std::tuple{"M1", 15.43e6, 0.04}, std::tuple{"M4", 9.60e6, 0.03}, std::tuple{"M10", 7.99e6, 0.03}})
+  for (const auto &[group, bts] :
+       {std::pair{"M1", 15.43e6}, std::pair{"M4", 9.60e6}, std::pair{"M10", 7.99e6}})
     {
       CaseParameters disc = default_case("bts/bts.prm", {std::string("Rock/Group=") + group});
       ASSERT_EQ(disc.rock.model, sph::RockModel::hoek_brown);
@@ -161,7 +162,7 @@ TEST(CoupledKinematic, DefaultCasesGiveTable3WithTheirHoekBrownRock)
       const Summary b = run_case(disc, quiet);
       std::printf("%s Hoek-Brown: BTS %.4f MPa (Table 3 %.2f), alignment %.2f\n", group, b.peak_stress / 1e6,
                   bts / 1e6, extra(b, "crack_alignment"));
-      EXPECT_NEAR(b.peak_stress / bts, 1.0, tolerance) << group;
+      EXPECT_NEAR(b.peak_stress / bts, 1.0, 0.025) << group;
       EXPECT_EQ(b.stop_reason, "post-peak drop") << group;
       EXPECT_GT(extra(b, "crack_alignment"), 3.0) << group;
     }
