@@ -127,6 +127,8 @@ run() {
     # the same on wide (1.2 D) elastic steel platens with mu 0.3: three spacings x three meshes
     platens-ucs-hb-shear-energy-grid) unpinned platens-ucs-hb-shear-energy-grid $ucs "${shear[@]}" \
                     "${steel[@]}" --set "Platens/Friction coefficient=0.3" "${grid[@]}" ;;
+    platens-ucs-hb-shear-energy-wide-mu) unpinned platens-ucs-hb-shear-energy-wide-mu $ucs "${shear[@]}" \
+                    "${steel[@]}" --set "Platens/Friction coefficient=0.1" --vary "SPH/Particle spacing=0.0025,0.00125" ;;
     platens-ucs-hb-shear-energy-fine) unpinned platens-ucs-hb-shear-energy-fine $ucs "${shear[@]}" \
                     "${steel[@]}" --set "Platens/Friction coefficient=0.3" --set "Platens/Element size=0.0025" \
                     --vary "SPH/Particle spacing=0.0025,0.00125" ;;
@@ -290,6 +292,8 @@ run() {
     # measured; the cases' 0) make the peak converge?
     platens-wide-hb-dilation) unpinned platens-wide-hb-dilation $ucs "${steel[@]}" "${fitted[@]}" "${plastic[@]}" \
                     --vary "Rock/Dilation angle=0,15,30,45,60" "${spacings[@]}" ;;
+    platens-wide-hb-dilation-shear-energy) unpinned platens-wide-hb-dilation-shear-energy $ucs "${steel[@]}" \
+                    "${fitted[@]}" "${shear[@]}" --vary "Rock/Dilation angle=0,30" "${spacings[@]}" ;;
     platens-wide-fitted-bonded) study platens-wide-fitted-bonded $ucs "${steel[@]}" "${fitted[@]}" \
                     --set "Platens/Bonded=true" \
                     --vary "Rock/Residual fraction=1,0.1" "${spacings[@]}" ;;
@@ -316,7 +320,9 @@ all=(bts-groups bts-groups-1mm bts-groups-hb bts-groups-1mm-hb ucs-groups-hb bts
      platens-ucs-hb-plastic platens-ucs-hb-plastic-bonded basalt-bts-compliance-hb basalt-ucs-compliance-hb
      platens-rollers-grid-hb platens-rollers-fine-hb platens-rollers-numerics-hb
      platens-ucs-hb-shear-energy platens-ucs-hb-shear-energy-bonded platens-ucs-hb-shear-energy-ratio
-     platens-ucs-hb-shear-energy-grid platens-ucs-hb-shear-energy-fine platens-wide-hb-dilation
+     platens-ucs-hb-shear-energy-grid platens-ucs-hb-shear-energy-fine platens-ucs-hb-shear-energy-wide-mu
+     platens-wide-hb-dilation
+     platens-wide-hb-dilation-shear-energy
      platens-ucs-hb-shear-energy-length heterogeneous-ucs-shear-energy)
 for name in "${@:-${all[@]}}"; do
   run "$name"
