@@ -303,7 +303,8 @@ TEST(CaseFile, ElasticPlatensWiderThanTheSpecimenAreWarned)
   EXPECT_TRUE(quiet({"Platens/Model=elastic", "Platens/Bonded=true"}));
   EXPECT_TRUE(quiet({"Platens/Diameter=0.06"}));
   // friction-held ends softening by a shear fault's crack band converge on wide platens (study
-  // platens-ucs-hb-shear-energy-grid); frictionless ones or the default G_II still warn
+  // platens-ucs-hb-shear-energy-grid, the cases' Hoek-Brown rock in UCS); frictionless ones, the
+  // default G_II, and the unmeasured Mohr-Coulomb rock and CTCS still warn
   const std::vector<std::string> shear{"Platens/Model=elastic", "Rock/Softening law=fracture energy",
                                        "Rock/Shear fracture energy ratio=100"};
   auto with = [&shear](const std::string &extra) {
@@ -313,6 +314,13 @@ TEST(CaseFile, ElasticPlatensWiderThanTheSpecimenAreWarned)
   };
   EXPECT_TRUE(quiet(with("Platens/Friction coefficient=0.1")));
   EXPECT_TRUE(warned(with("Platens/Friction coefficient=0")));
+  auto with_both = [&with](const std::string &extra) {
+    auto s = with("Platens/Friction coefficient=0.1");
+    s.push_back(extra);
+    return s;
+  };
+  EXPECT_TRUE(warned(with_both("Rock/Model=mohr-coulomb")));
+  EXPECT_TRUE(warned(with_both("Test/Type=CTCS")));
   EXPECT_TRUE(warned({"Platens/Model=elastic", "Rock/Softening law=fracture energy",
                       "Platens/Friction coefficient=0.3"})); // with the snap-back warning beside it
 }

@@ -148,7 +148,8 @@ TEST(CoupledKinematic, DefaultBtsCaseGivesTable3WithTheSimulatorsRock)
 // 2 mm): UCS within 1 % (sigma_ci is the UCS; M4's cylinder measured +0.29 %, the loading rate's
 // overshoot); BTS within 2.5 % (measured -0.80 / -1.32 / -1.22 %): the disc at 2 mm lies up to
 // 1.6 % below its 1.25 mm calibration (study bts-groups-hb; M1 14.85 MPa at 2.5 mm, 3.8 % low,
-// would fail this), and the calibration holds Table 3 within 0.5 %. The split runs along the
+// would fail this) and the calibration holds Table 3 within 0.5 %: 2.1 %, with 0.4 % to spare
+// below the 3 % asked of the BTS. The split runs along the
 // loaded diameter.
 TEST(CoupledKinematic, DefaultCasesGiveTable3WithTheirHoekBrownRock)
 {
@@ -487,7 +488,7 @@ TEST(CoupledKinematic, WideSteelPlatensWithFrictionConvergeInSpacingAndMesh)
   // platens users run: over 5 / 2.5 / 1.25 mm particles on 10 / 5 / 2.5 mm elements the peak lies
   // within 279.51-280.06 MPa and the platen-read modulus within 86.08-86.52 GPa (study
   // platens-ucs-hb-shear-energy-grid, cases/studies/platens/README.md). Here the three cheap cells
-  // of that grid (5 mm particles on 10 and 5 mm elements, 2.5 mm on 5 mm; about 50 s on one
+  // of that grid (5 mm particles on 10 and 5 mm elements, 2.5 mm on 5 mm; about 35 s on one
   // thread), against the grid's finest cell (1.25 mm on 2.5 mm elements: 279.51 MPa, 86.36 GPa).
   const std::vector<std::string> base{"Rock/Softening law=fracture energy",
                                       "Rock/Shear fracture energy ratio=100",
